@@ -1,0 +1,44 @@
+// fldsim plugin ABI: the plain descriptor every plugin exports and the version it is checked
+// against. The loader reads the descriptor *before* any C++ type crosses the library boundary,
+// so a plugin built against another API (or another compiler/Eigen configuration) is refused
+// with a message instead of crashing.
+#pragma once
+
+#include <cstdint>
+
+#define FLDSIM_API_MAJOR 1
+#define FLDSIM_API_MINOR 0
+
+#define FLDSIM_STR2(x) #x
+#define FLDSIM_STR(x) FLDSIM_STR2(x)
+
+// Everything that changes the layout of a C++ object shared with a plugin: compiler ABI,
+// libstdc++ string ABI, Eigen version and alignment. Plugins and core must agree exactly.
+#ifndef EIGEN_MAX_ALIGN_BYTES
+#define FLDSIM_EIGEN_ALIGN "default"
+#else
+#define FLDSIM_EIGEN_ALIGN FLDSIM_STR(EIGEN_MAX_ALIGN_BYTES)
+#endif
+#define FLDSIM_BUILD_TAG                                                              \
+  "gcc-abi" FLDSIM_STR(__GXX_ABI_VERSION) "/cxx11abi" FLDSIM_STR(_GLIBCXX_USE_CXX11_ABI) \
+  "/api" FLDSIM_STR(FLDSIM_API_MAJOR)
+
+#if defined(__GNUC__)
+#define FLDSIM_VISIBLE __attribute__((visibility("default")))
+#else
+#define FLDSIM_VISIBLE
+#endif
+
+extern "C" {
+// Plain-data descriptor exported by every plugin library under the symbol name
+// `fldsim_plugin_descriptor`. Only C types: it can be read safely from any library.
+struct fldsim_plugin_descriptor_t {
+  std::uint32_t api_major;
+  std::uint32_t api_minor;
+  const char* kind;       // "shape", "hydro", "force" or "observer"
+  const char* name;       // the name used in the YAML `plugin:` key
+  const char* version;    // the plugin's own version, e.g. "1.0.0"
+  const char* summary;    // one line for `fldsim plugins`
+  const char* build_tag;  // FLDSIM_BUILD_TAG at the plugin's compile time
+};
+}

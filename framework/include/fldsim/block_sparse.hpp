@@ -1,0 +1,68 @@
+// Symmetric block-sparse matrix with 6x6 blocks (one block row per body), stored as the block
+// diagonal plus the upper off-diagonal blocks in compressed rows. The pattern is rebuilt only
+// when the pair list changes; values are overwritten in place at every assembly, so the time
+// step allocates nothing.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+#include "fldsim/api.hpp"
+#include "fldsim/rigid.hpp"
+
+namespace fldsim {
+
+class FLDSIM_VISIBLE BlockSparseMatrix {
+ public:
+  // Set the pattern: n block rows and the (i < j) block pairs that may be non-zero (duplicates
+  // allowed). Values are zeroed.
+  void set_pattern(std::size_t n, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& upper);
+  std::size_t blocks() const { return diag_.size(); }
+  std::size_t size() const { return 6 * diag_.size(); }
+
+  void set_zero();
+  Mat6& diagonal(std::size_t i) { return diag_[i]; }
+  const Mat6& diagonal(std::size_t i) const { return diag_[i]; }
+  // Index of the stored upper block (i, j), i < j; -1 if not in the pattern.
+  std::int64_t find(std::uint32_t i, std::uint32_t j) const;
+  Mat6& upper(std::int64_t index) { return values_[index]; }
+  const Mat6& upper(std::int64_t index) const { return values_[index]; }
+
+  // y = A x (x, y of length 6n, not aliased). Parallel over block rows, deterministic.
+  void multiply(const double* x, double* y) const;
+  // Dense copy, for tests.
+  Eigen::MatrixXd dense() const;
+
+ private:
+  std::vector<Mat6> diag_;
+  // Compressed upper part: row_start_[i]..row_start_[i+1] index col_/values_.
+  std::vector<std::int64_t> row_start_;
+  std::vector<std::uint32_t> col_;
+  std::vector<Mat6> values_;
+  // Transposed view for the lower part: for each column j, the stored indices with col == j.
+  std::vector<std::int64_t> col_start_;
+  std::vector<std::int64_t> by_col_;
+  std::vector<std::uint32_t> by_col_row_;
+};
+
+// Preconditioned conjugate gradients for A x = b with A symmetric positive definite and the
+// inverse of each 6x6 diagonal block as preconditioner (block Jacobi). Work vectors are kept
+// between calls; x holds the warm start on entry.
+class FLDSIM_VISIBLE BlockJacobiPCG {
+ public:
+  struct Result {
+    int iterations = 0;
+    double relative_residual = 0.0;
+    bool converged = false;
+  };
+  // Factor the diagonal blocks of A (call after each assembly).
+  void prepare(const BlockSparseMatrix& A);
+  Result solve(const BlockSparseMatrix& A, const double* b, double* x, double tolerance, int max_iterations);
+
+ private:
+  std::vector<Mat6> inv_diag_;
+  std::vector<double> r_, z_, p_, q_;
+};
+
+}  // namespace fldsim
