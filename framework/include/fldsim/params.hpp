@@ -64,9 +64,10 @@ class FLDSIM_VISIBLE ParamSchema {
 
   const std::vector<ParamSpec>& specs() const { return specs_; }
   const ParamSpec* find(const std::string& name) const;
+  // Append a complete spec (used by the core to merge its own keys into a plugin's schema).
+  ParamSpec& add(ParamSpec s);
 
  private:
-  ParamSpec& add(ParamSpec s);
   std::vector<ParamSpec> specs_;
 };
 
@@ -82,7 +83,8 @@ class FLDSIM_VISIBLE Params {
   Params(std::string block_path, std::string block_location)
       : block_path_(std::move(block_path)), block_location_(std::move(block_location)) {}
 
-  void set(const std::string& name, ParamValue v, ParamOrigin origin);
+  // `given` = false marks a value filled in from the schema default.
+  void set(const std::string& name, ParamValue v, ParamOrigin origin, bool given = true);
 
   double number(const std::string& name) const;
   long integer(const std::string& name) const;

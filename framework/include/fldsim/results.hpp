@@ -25,6 +25,21 @@ class FLDSIM_VISIBLE ResultSink {
                              const std::vector<std::size_t>& shape, const double* data, const std::string& unit) = 0;
   // A string attribute on a group or dataset (created as a group if absent).
   virtual void write_attribute(const std::string& path, const std::string& key, const std::string& value) = 0;
+  // Typed attributes, for conventions that require them (H5MD `dimension` is an integer,
+  // `boundary` a string array). The defaults fall back to one comma-separated string attribute
+  // for sinks that only store text.
+  virtual void write_int_attribute(const std::string& path, const std::string& key,
+                                   const std::vector<std::int64_t>& values) {
+    std::string joined;
+    for (std::size_t i = 0; i < values.size(); ++i) joined += (i ? "," : "") + std::to_string(values[i]);
+    write_attribute(path, key, joined);
+  }
+  virtual void write_string_list_attribute(const std::string& path, const std::string& key,
+                                           const std::vector<std::string>& values) {
+    std::string joined;
+    for (std::size_t i = 0; i < values.size(); ++i) joined += (i ? "," : "") + values[i];
+    write_attribute(path, key, joined);
+  }
 };
 
 }  // namespace fldsim

@@ -1,0 +1,64 @@
+#include "dynamics/TimeIntegrator.hpp"
+
+#include <algorithm>
+
+namespace fldsim {
+
+EulerMaruyama::EulerMaruyama(std::uint64_t seed, bool brownian, DriftScheme drift, std::size_t bodies)
+    : seed_(seed), brownian_(brownian), drift_(drift), U_(6 * bodies), dU_(6 * bodies) {}
+
+std::string EulerMaruyama::describe() const {
+  if (!brownian_) return "Euler (no Brownian forces)";
+  return drift_ == DriftScheme::Midpoint ? "Euler-Maruyama with midpoint thermal drift"
+                                         : "Euler-Maruyama without thermal drift (drift: none)";
+}
+
+void EulerMaruyama::step(System& s, VelocityEvaluator& ev, double dt, bool want_virial) {
+  base_.save(s);
+  ev.prepare(s, want_virial);
+  if (brownian_) ev.draw_brownian(s, RandomStream(seed_, RandomPurpose::BodyNoise, std::uint64_t(s.step())), dt);
+  ev.solve(s, brownian_);
+  if (brownian_ && drift_ == DriftScheme::Midpoint) {
+    std::copy_n(ev.velocity(), U_.size(), U_.begin());
+    move_from(s, base_, U_.data(), 0.5 * dt);
+    ev.prepare(s, want_virial);
+    ev.solve(s, true);  // same F_B: the noise is frozen over the step
+  }
+  std::copy_n(ev.velocity(), U_.size(), U_.begin());
+  std::copy_n(ev.relative_velocity(), dU_.size(), dU_.begin());
+  move_from(s, base_, U_.data(), dt);
+  record_displacement(s, U_.data(), dU_.data(), dt);
+  wrap_into_box(s);
+  s.set_step(s.step() + 1);
+}
+
+RungeKutta3::RungeKutta3(std::size_t bodies)
+    : k1_(6 * bodies), k2_(6 * bodies), k3_(6 * bodies), r1_(6 * bodies), r2_(6 * bodies), r3_(6 * bodies),
+      U_(6 * bodies), dU_(6 * bodies) {}
+
+void RungeKutta3::step(System& s, VelocityEvaluator& ev, double dt, bool want_virial) {
+  const std::size_t n6 = U_.size();
+  base_.save(s);
+  auto stage = [&](std::vector<double>& k, std::vector<double>& r) {
+    ev.prepare(s, want_virial);
+    ev.solve(s, false);
+    std::copy_n(ev.velocity(), n6, k.begin());
+    std::copy_n(ev.relative_velocity(), n6, r.begin());
+  };
+  stage(k1_, r1_);
+  move_from(s, base_, k1_.data(), 0.5 * dt);
+  stage(k2_, r2_);
+  for (std::size_t k = 0; k < n6; ++k) U_[k] = 2.0 * k2_[k] - k1_[k];
+  move_from(s, base_, U_.data(), dt);
+  stage(k3_, r3_);
+  for (std::size_t k = 0; k < n6; ++k) {
+    U_[k] = (k1_[k] + 4.0 * k2_[k] + k3_[k]) / 6.0;
+    dU_[k] = (r1_[k] + 4.0 * r2_[k] + r3_[k]) / 6.0;
+  }
+  move_from(s, base_, U_.data(), dt);
+  record_displacement(s, U_.data(), dU_.data(), dt);
+  wrap_into_box(s);
+  s.set_step(s.step() + 1);
+}
+
+}  // namespace fldsim

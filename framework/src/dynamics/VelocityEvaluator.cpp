@@ -1,0 +1,46 @@
+#include "dynamics/VelocityEvaluator.hpp"
+
+#include <algorithm>
+
+namespace fldsim {
+
+VelocityEvaluator::VelocityEvaluator(std::shared_ptr<HydroModel> hydro,
+                                     std::vector<std::shared_ptr<ForceLaw>> forces, CellNeighbourList& pairs,
+                                     std::size_t bodies)
+    : hydro_(std::move(hydro)),
+      forces_(std::move(forces)),
+      list_(pairs),
+      FP_(6 * bodies, 0.0),
+      FB_(6 * bodies, 0.0),
+      F_(6 * bodies, 0.0),
+      dU_(6 * bodies, 0.0),
+      U_(6 * bodies, 0.0) {}
+
+void VelocityEvaluator::prepare(System& s, bool want_virial) {
+  list_.update(s);
+  std::fill(FP_.begin(), FP_.end(), 0.0);
+  virial_.setZero();
+  for (const auto& f : forces_) f->add(s, list_.pairs(), FP_.data(), want_virial ? &virial_ : nullptr);
+  hydro_->assemble(s, list_.pairs());
+}
+
+void VelocityEvaluator::draw_brownian(const System& s, const RandomStream& noise, double dt) {
+  hydro_->brownian_force(s, list_.pairs(), noise, dt, FB_.data());
+}
+
+void VelocityEvaluator::solve(const System& s, bool with_brownian) {
+  const std::size_t n6 = F_.size();
+  for (std::size_t k = 0; k < n6; ++k) F_[k] = FP_[k] + (with_brownian ? FB_[k] : 0.0);
+  hydro_->solve(s, F_.data(), dU_.data());
+  const Vec3 w = s.flow_vorticity();
+  const auto& x = s.positions();
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const Vec3 u = s.flow_velocity(x[i]);
+    for (int k = 0; k < 3; ++k) {
+      U_[6 * i + k] = u[k] + dU_[6 * i + k];
+      U_[6 * i + 3 + k] = w[k] + dU_[6 * i + 3 + k];
+    }
+  }
+}
+
+}  // namespace fldsim

@@ -1,0 +1,48 @@
+// "The velocities of this configuration" — the one function every integrator stage calls:
+//   refresh node pairs; F_P = sum of force laws; assemble R; (draw F_B);
+//   solve R_FU (U - U_inf) = F_P + F_B + R_FE:E_inf;  U = U_inf + dU.
+// Buffers are sized once; nothing is allocated per call.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "fldsim/force.hpp"
+#include "fldsim/hydro.hpp"
+#include "geometry/CellNeighbourList.hpp"
+
+namespace fldsim {
+
+class VelocityEvaluator {
+ public:
+  VelocityEvaluator(std::shared_ptr<HydroModel> hydro, std::vector<std::shared_ptr<ForceLaw>> forces,
+                    CellNeighbourList& pairs, std::size_t bodies);
+
+  // Pairs, interparticle forces (and their virial if asked) and the resistance at the current
+  // configuration of s (node positions must be current).
+  void prepare(System& s, bool want_virial);
+  // F_B for the prepared configuration (overwrites the stored Brownian force).
+  void draw_brownian(const System& s, const RandomStream& noise, double dt);
+  // Solve with F_P (+ the stored F_B if with_brownian). Warm-started from the previous dU.
+  void solve(const System& s, bool with_brownian);
+
+  const double* velocity() const { return U_.data(); }        // total U, Omega (6N)
+  const double* relative_velocity() const { return dU_.data(); }  // U - U_inf (6N)
+  const double* force() const { return FP_.data(); }           // F_P (6N)
+  const double* brownian_force() const { return FB_.data(); }
+  const Eigen::Matrix3d& virial() const { return virial_; }
+  std::vector<double>& warm_start() { return dU_; }
+  const NodePairList& pairs() const { return list_.pairs(); }
+  const CellNeighbourList& neighbour_list() const { return list_; }
+  HydroModel& hydro() { return *hydro_; }
+  SolveStats stats() const { return hydro_->last_solve(); }
+
+ private:
+  std::shared_ptr<HydroModel> hydro_;
+  std::vector<std::shared_ptr<ForceLaw>> forces_;
+  CellNeighbourList& list_;
+  std::vector<double> FP_, FB_, F_, dU_, U_;
+  Eigen::Matrix3d virial_ = Eigen::Matrix3d::Zero();
+};
+
+}  // namespace fldsim

@@ -1,0 +1,301 @@
+#include "run/Experiment.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <filesystem>
+#include <set>
+#include <sstream>
+
+#include "config/YamlValidation.hpp"
+
+namespace fldsim {
+namespace {
+
+const std::vector<std::string> kTopKeys = {"system", "flow", "hydro", "forces", "run", "observers", "output", "plugins"};
+
+ParamSchema system_schema() {
+  ParamSchema s;
+  s.integer("count", std::nullopt, "", "number of bodies N").at_least(1);
+  s.number("volume_fraction", std::nullopt, "", "true volume fraction phi = N V_body / V_box").greater(0.0).less(0.74);
+  s.number("box_edge", 0.0, "a", "cubic box edge; 0 = from count and volume_fraction").at_least(0.0);
+  return s;
+}
+
+ParamSchema init_schema() {
+  ParamSchema s;
+  s.choice("method", "monte_carlo", {"monte_carlo", "explicit", "file"},
+           "monte_carlo: hard-body Monte Carlo from a lattice; explicit: `positions` (and "
+           "`orientations`) listed here; file: last frame of an earlier result file");
+  s.integer("seed", 1, "", "seed of the Monte Carlo start").at_least(0);
+  s.integer("sweeps", 0, "", "Monte Carlo sweeps; 0 = until decorrelated").at_least(0);
+  s.table("positions", std::vector<std::vector<double>>{}, "a", "explicit start: one [x, y, z] per body");
+  s.table("orientations", std::vector<std::vector<double>>{}, "",
+          "explicit start: one director [nx, ny, nz] or quaternion [w, x, y, z] per body");
+  s.text("file", std::string(), "file start: an earlier result file (its last trajectory frame)");
+  return s;
+}
+
+ParamSchema flow_schema() {
+  ParamSchema s;
+  s.number("peclet", 0.0, "", "Pe = gammadot a^2 / D0; 0 = quiescent").at_least(0.0);
+  s.flag("brownian", true, "false for a non-Brownian (kT = 0) run: Pe is then irrelevant and gammadot = 1");
+  return s;
+}
+
+ParamSchema run_schema() {
+  ParamSchema s;
+  s.number("dt", std::nullopt, "time_unit", "time step").greater(0.0);
+  s.number("duration", std::nullopt, "time_unit", "length of the run").greater(0.0);
+  s.choice("time_unit", "paper", {"paper", "diffusive", "strain"},
+           "unit of dt, duration, observer start and checkpoint_every: diffusive = a^2/D0, strain = "
+           "1/gammadot, paper = diffusive for Pe < 1 and strain for Pe >= 1 (Kumar & Higdon)");
+  s.integer("seed", 42, "", "seed of the Brownian noise (counter-based: same seed, same run)").at_least(0);
+  s.choice("integrator", "auto", {"auto", "euler_maruyama", "rk3"},
+           "auto = Euler-Maruyama for Brownian runs, third-order Runge-Kutta for kT = 0");
+  s.choice("drift", "midpoint", {"midpoint", "none"},
+           "thermal drift kT div M: midpoint step with frozen noise, or none (wrong equilibrium; for comparison)");
+  s.number("skin", 0.3, "a", "neighbour-list skin: the list is rebuilt when a node moved more than skin/2")
+      .greater(0.0);
+  s.number("checkpoint_every", 0.0, "time_unit", "write a checkpoint this often (0 = only at the end)").at_least(0.0);
+  s.integer("threads", 0, "", "OpenMP threads; 0 = OMP_NUM_THREADS or all cores").at_least(0);
+  return s;
+}
+
+void apply_override(YAML::Node root, const std::string& item) {
+  const auto eq = item.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw ConfigError("--set " + item + ": expected dotted.key=value");
+  const std::string path = item.substr(0, eq);
+  YAML::Node value;
+  try {
+    value = YAML::Load(item.substr(eq + 1));
+  } catch (const YAML::Exception& e) {
+    throw ConfigError("--set " + item + ": value is not valid YAML: " + e.msg);
+  }
+  std::vector<std::string> keys;
+  std::stringstream ss(path);
+  for (std::string k; std::getline(ss, k, '.');) keys.push_back(k);
+  // Walk with reset() copies: yaml-cpp nodes are handles, assignment would overwrite.
+  YAML::Node cur;
+  cur.reset(root);
+  for (std::size_t i = 0; i + 1 < keys.size(); ++i) {
+    YAML::Node next;
+    if (cur.IsSequence()) {
+      const std::size_t idx = std::stoul(keys[i]);
+      if (idx >= cur.size()) throw ConfigError("--set " + item + ": index " + keys[i] + " out of range");
+      next.reset(cur[idx]);
+    } else {
+      next.reset(cur[keys[i]]);
+    }
+    cur.reset(next);
+  }
+  if (cur.IsSequence())
+    cur[std::stoul(keys.back())] = value;
+  else
+    cur[keys.back()] = value;
+}
+
+// Validate a `{plugin: name, ...}` block of the given kind against that plugin's schema.
+bool read_plugin_block(const YAML::Node& node, const std::string& kind, const std::string& path,
+                       const PluginRegistry& registry, ConfigErrors& errors, PluginBlock& out,
+                       const ParamSchema* core_keys = nullptr) {
+  out.kind = kind;
+  out.path = path;
+  if (!node || !node.IsMap()) {
+    errors.add(node, path, "expected a map with a `plugin` key, got " + describe_yaml_value(node));
+    return false;
+  }
+  const YAML::Node name = node["plugin"];
+  if (!name || !name.IsScalar()) {
+    errors.add(node, path + ".plugin", "missing required key (the name of a " + kind + " plugin)");
+    return false;
+  }
+  out.name = name.as<std::string>();
+  const PluginInfo* info = nullptr;
+  try {
+    info = &registry.find(kind, out.name);
+  } catch (const PluginError& e) {
+    errors.add(name, path + ".plugin", e.what());
+    return false;
+  }
+  // The core's own keys in a plugin block (observer `every`, `start`) are validated with it.
+  ParamSchema schema = info->schema;
+  if (core_keys)
+    for (const auto& spec : core_keys->specs()) schema.add(spec);
+  out.params = validate_params(node, schema, path, errors, {"plugin"});
+  return true;
+}
+
+}  // namespace
+
+Experiment read_experiment(const std::string& file, const std::vector<std::string>& overrides,
+                           std::unique_ptr<PluginRegistry>& registry) {
+  YAML::Node root = load_yaml_file(file);
+  for (const auto& item : overrides) apply_override(root, item);
+  Experiment ex;
+  ex.file = file;
+  {
+    YAML::Emitter emit;
+    emit << root;
+    ex.resolved_yaml = emit.c_str();
+  }
+  ConfigErrors errors(file);
+  if (!root.IsMap()) {
+    errors.add(root, "(top level)", "expected a map of sections (system, flow, hydro, run, ...)");
+    errors.throw_if_any();
+  }
+  for (const auto& kv : root) {
+    const std::string key = kv.first.as<std::string>();
+    if (std::find(kTopKeys.begin(), kTopKeys.end(), key) == kTopKeys.end()) {
+      const std::string hint = did_you_mean(key, kTopKeys);
+      errors.add(kv.first, key, hint.empty() ? "unknown key" : "unknown key (did you mean '" + hint + "'?)");
+    }
+  }
+
+  // Plugin search path first: every plugin block depends on it.
+  const YAML::Node plugins = root["plugins"];
+  if (plugins) {
+    const YAML::Node paths = plugins.IsMap() ? plugins["paths"] : YAML::Node();
+    if (!paths || !paths.IsSequence())
+      errors.add(plugins, "plugins.paths", "expected a list of directories");
+    else
+      for (const auto& p : paths) ex.plugin_paths.push_back(p.as<std::string>());
+  }
+  const std::string dir = std::filesystem::path(file).parent_path().string();
+  registry = std::make_unique<PluginRegistry>(PluginRegistry::search_path(ex.plugin_paths, dir));
+
+  auto section = [&](const char* key, bool required) -> YAML::Node {
+    const YAML::Node n = root[key];
+    if (!n) {
+      if (required) errors.add(root, key, "missing required section");
+      return YAML::Node(YAML::NodeType::Map);
+    }
+    if (!n.IsMap()) {
+      errors.add(n, key, "expected a map, got " + describe_yaml_value(n));
+      return YAML::Node(YAML::NodeType::Map);
+    }
+    return n;
+  };
+
+  const YAML::Node sys = section("system", true);
+  const Params sp = validate_params(sys, system_schema(), "system", errors, {"shape", "init"});
+  if (sp.has("count")) ex.count = sp.integer("count");
+  if (sp.has("volume_fraction")) ex.volume_fraction = sp.number("volume_fraction");
+  if (sp.has("box_edge")) ex.box_edge = sp.number("box_edge");
+  if (!sys["shape"])
+    errors.add(sys, "system.shape", "missing required key (a map with `plugin: sphere|dicolloid|cluster`)");
+  else
+    read_plugin_block(sys["shape"], "shape", "system.shape", *registry, errors, ex.shape);
+  {
+    const YAML::Node init = sys["init"] ? sys["init"] : YAML::Node(YAML::NodeType::Map);
+    const Params ip = validate_params(init, init_schema(), "system.init", errors);
+    if (ip.has("method")) {
+      ex.init_method = ip.text("method");
+      ex.init_seed = ip.integer("seed");
+      ex.init_sweeps = ip.integer("sweeps");
+      ex.init_positions = ip.table("positions");
+      ex.init_orientations = ip.table("orientations");
+      ex.init_file = ip.text("file");
+      if (ex.init_method == "explicit" && ex.init_positions.empty())
+        errors.add(init, "system.init.positions", "method explicit needs a list of positions");
+      if (ex.init_method == "file" && ex.init_file.empty())
+        errors.add(init, "system.init.file", "method file needs the path of an earlier result file");
+    }
+  }
+
+  const Params fp = validate_params(section("flow", false), flow_schema(), "flow", errors);
+  if (fp.has("peclet")) {
+    ex.peclet = fp.number("peclet");
+    ex.brownian = fp.flag("brownian");
+  }
+
+  const YAML::Node hydro = root["hydro"];
+  if (!hydro)
+    errors.add(root, "hydro", "missing required section (e.g. {plugin: fld})");
+  else
+    read_plugin_block(hydro, "hydro", "hydro", *registry, errors, ex.hydro);
+
+  if (const YAML::Node forces = root["forces"]) {
+    if (!forces.IsSequence()) {
+      errors.add(forces, "forces", "expected a list of {plugin: ...} maps");
+    } else {
+      for (std::size_t i = 0; i < forces.size(); ++i) {
+        PluginBlock b;
+        if (read_plugin_block(forces[i], "force", "forces[" + std::to_string(i) + "]", *registry, errors, b))
+          ex.forces.push_back(std::move(b));
+      }
+    }
+  }
+
+  if (const YAML::Node obs = root["observers"]) {
+    if (!obs.IsSequence()) {
+      errors.add(obs, "observers", "expected a list of {plugin: ...} maps");
+    } else {
+      ParamSchema schedule;
+      schedule.integer("every", 1, "steps", "sample every this many steps").at_least(1);
+      schedule.number("start", 0.0, "time_unit", "sample only from this time on").at_least(0.0);
+      for (std::size_t i = 0; i < obs.size(); ++i) {
+        ObserverBlock b;
+        if (read_plugin_block(obs[i], "observer", "observers[" + std::to_string(i) + "]", *registry, errors,
+                              b.plugin, &schedule) &&
+            b.plugin.params.has("every")) {
+          b.every = b.plugin.params.integer("every");
+          b.start = b.plugin.params.number("start");
+          ex.observers.push_back(std::move(b));
+        }
+      }
+    }
+  }
+
+  const YAML::Node run = section("run", true);
+  const Params rp = validate_params(run, run_schema(), "run", errors);
+  if (rp.has("dt")) ex.dt = rp.number("dt");
+  if (rp.has("duration")) ex.duration = rp.number("duration");
+  if (rp.has("time_unit")) {
+    ex.time_unit = rp.text("time_unit");
+    ex.seed = rp.integer("seed");
+    ex.integrator = rp.text("integrator");
+    ex.drift = rp.text("drift");
+    ex.skin = rp.number("skin");
+    ex.checkpoint_every = rp.number("checkpoint_every");
+    ex.threads = rp.integer("threads");
+  }
+  if (ex.dt > 0 && ex.duration > 0 && ex.dt > ex.duration)
+    errors.add(run["dt"], "run.dt", "expected a time step no longer than run.duration");
+  if (ex.brownian && ex.integrator == "rk3")
+    errors.add(run["integrator"], "run.integrator", "rk3 is deterministic; use euler_maruyama for a Brownian run");
+  if (!ex.brownian && root["flow"] && root["flow"]["peclet"] && ex.peclet == 0.0)
+    errors.add(root["flow"]["peclet"], "flow.peclet",
+               "a non-Brownian run (brownian: false) needs shear; remove peclet or set it > 0");
+
+  if (const YAML::Node out = root["output"]) {
+    if (!out.IsScalar())
+      errors.add(out, "output", "expected a file name, got " + describe_yaml_value(out));
+    else
+      ex.output = out.as<std::string>();
+  }
+  errors.throw_if_any();
+  return ex;
+}
+
+std::string core_keys_help() {
+  std::ostringstream out;
+  auto print = [&](const std::string& title, const ParamSchema& s) {
+    out << title << "\n";
+    for (const auto& spec : s.specs()) {
+      out << "  " << spec.name << "  (" << spec.expectation();
+      if (!spec.unit.empty()) out << ", unit " << spec.unit;
+      out << ")  " << spec.help << "\n";
+    }
+  };
+  print("system: (also `shape: {plugin: ...}` and `init: {...}`)", system_schema());
+  print("system.init:", init_schema());
+  print("flow:", flow_schema());
+  print("run:", run_schema());
+  out << "hydro: {plugin: NAME, ...}   forces: [{plugin: NAME, ...}]   observers: [{plugin: NAME, every: N, "
+         "start: T, ...}]\n"
+         "output: result file (HDF5)   plugins: {paths: [DIR, ...]}\n";
+  return out.str();
+}
+
+}  // namespace fldsim

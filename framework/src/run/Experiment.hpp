@@ -1,0 +1,71 @@
+// An experiment file, read and validated: the core's own keys against the core schema, and
+// each plugin block against the schema its plugin declares. All errors are collected and
+// reported together (ConfigError, exit code 2) as `file:line:col: key.path: message`.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "fldsim/params.hpp"
+#include "plugins/PluginRegistry.hpp"
+
+namespace fldsim {
+
+struct PluginBlock {
+  std::string kind, name;
+  Params params;
+  std::string path;  // "hydro", "forces[0]", ...
+};
+
+struct ObserverBlock {
+  PluginBlock plugin;
+  std::int64_t every = 1;
+  double start = 0.0;  // in the user's time unit
+};
+
+struct Experiment {
+  std::string file;           // as given
+  std::string resolved_yaml;  // after --set overrides, for /parameters
+  std::vector<std::string> plugin_paths;
+
+  PluginBlock shape;
+  std::int64_t count = 0;
+  double volume_fraction = 0.0;
+  double box_edge = 0.0;  // 0 = from count and volume_fraction
+
+  std::string init_method;  // monte_carlo | explicit | file
+  std::int64_t init_seed = 1;
+  std::int64_t init_sweeps = 0;
+  std::vector<std::vector<double>> init_positions, init_orientations;
+  std::string init_file;
+
+  double peclet = 0.0;
+  bool brownian = true;
+
+  PluginBlock hydro;
+  std::vector<PluginBlock> forces;
+  std::vector<ObserverBlock> observers;
+
+  double dt = 0.0, duration = 0.0;  // in time_unit
+  std::string time_unit;            // paper | diffusive | strain
+  std::int64_t seed = 42;
+  std::string integrator;           // auto | euler_maruyama | rk3
+  std::string drift;                // midpoint | none
+  double skin = 0.3;
+  double checkpoint_every = 0.0;    // in time_unit; 0 = only at the end
+  std::int64_t threads = 0;
+
+  std::string output;
+};
+
+// `overrides` are "dotted.key=value" strings applied before validation (sweeps).
+// Throws ConfigError with every problem found.
+Experiment read_experiment(const std::string& file, const std::vector<std::string>& overrides,
+                           std::unique_ptr<PluginRegistry>& registry);
+
+// Human-readable description of the core keys, for `fldsim run --help` and the README.
+std::string core_keys_help();
+
+}  // namespace fldsim

@@ -1,0 +1,304 @@
+#include "run/Simulation.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <ostream>
+#include <sstream>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "dynamics/TimeIntegrator.hpp"
+#include "dynamics/VelocityEvaluator.hpp"
+#include "fldsim/observer.hpp"
+#include "geometry/CellNeighbourList.hpp"
+#include "geometry/HardBodyMonteCarlo.hpp"
+#include "io/Checkpoint.hpp"
+#include "io/FrameReader.hpp"
+#include "io/Hdf5ResultSink.hpp"
+
+namespace fldsim {
+namespace {
+
+Quat orientation_from_row(const std::vector<double>& row, std::size_t i) {
+  if (row.size() == 4) return Quat(row[0], row[1], row[2], row[3]).normalized();
+  if (row.size() == 3) {
+    const Vec3 n(row[0], row[1], row[2]);
+    if (n.norm() == 0.0) throw Error("system.init.orientations[" + std::to_string(i) + "]: zero director");
+    return Quat::FromTwoVectors(Vec3::UnitZ(), n.normalized());
+  }
+  throw Error("system.init.orientations[" + std::to_string(i) +
+              "]: expected a director [nx, ny, nz] or a quaternion [w, x, y, z]");
+}
+
+void initialise(System& sys, const Experiment& ex, std::ostream& log) {
+  if (ex.init_method == "explicit") {
+    if (ex.init_positions.size() != sys.size())
+      throw Error(ex.file + ": system.init.positions: expected " + std::to_string(sys.size()) +
+                  " positions (system.count), got " + std::to_string(ex.init_positions.size()));
+    std::vector<Vec3> x;
+    std::vector<Quat> q;
+    for (std::size_t i = 0; i < sys.size(); ++i) {
+      const auto& p = ex.init_positions[i];
+      if (p.size() != 3) throw Error(ex.file + ": system.init.positions[" + std::to_string(i) + "]: expected [x, y, z]");
+      x.emplace_back(p[0], p[1], p[2]);
+      q.push_back(i < ex.init_orientations.size() ? orientation_from_row(ex.init_orientations[i], i)
+                                                   : Quat::Identity());
+    }
+    place_explicit(sys, x, q);
+    log << "start: " << sys.size() << " bodies placed as listed in the experiment\n";
+  } else if (ex.init_method == "file") {
+    const Checkpoint c = read_last_frame(ex.init_file);
+    if (c.positions.size() != sys.size())
+      throw Error(ex.init_file + ": has " + std::to_string(c.positions.size()) + " bodies, the experiment asks for " +
+                  std::to_string(sys.size()));
+    sys.positions() = c.positions;
+    sys.orientations() = c.orientations;
+    sys.box().set_strain(c.strain);
+    sys.update_nodes();
+    log << "start: last frame of " << ex.init_file << "\n";
+  } else {
+    MonteCarloOptions opt;
+    opt.seed = std::uint64_t(ex.init_seed);
+    opt.sweeps = ex.init_sweeps;
+    const auto t0 = std::chrono::steady_clock::now();
+    const MonteCarloReport r = initialise_monte_carlo(sys, opt, [&](const std::string& m) { log << "  mc: " << m << "\n"; });
+    const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    log << "start: hard-body Monte Carlo, " << r.sweeps << " sweeps in " << std::fixed << std::setprecision(1) << secs
+        << " s (acceptance " << std::setprecision(2) << r.acceptance_translation << " / " << r.acceptance_rotation
+        << "), phi = " << std::setprecision(4) << r.final_volume_fraction << ", overlaps " << r.overlaps << "\n"
+        << std::defaultfloat;
+    if (r.overlaps != 0) throw Error("Monte Carlo start left " + std::to_string(r.overlaps) + " overlaps");
+  }
+}
+
+std::string format_time(double seconds) {
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(1) << seconds << " s";
+  return s.str();
+}
+
+}  // namespace
+
+int run_experiment(const Experiment& ex, const PluginRegistry& registry, const RunOptions& opt, std::ostream& log) {
+  namespace fs = std::filesystem;
+  const auto wall0 = std::chrono::steady_clock::now();
+#ifdef _OPENMP
+  if (ex.threads > 0) omp_set_num_threads(int(ex.threads));
+  const int threads = omp_get_max_threads();
+#else
+  const int threads = 1;
+#endif
+  const std::string output = !opt.output.empty() ? opt.output : ex.output;
+  if (output.empty()) throw ConfigError(ex.file + ": output: no result file named (set `output:` or use -o)");
+  if (fs::exists(output) && !opt.overwrite)
+    throw Error(output + " exists; refusing to overwrite it (use --overwrite or another -o)");
+
+  auto shape = registry.create<Shape>("shape", ex.shape.name, ex.shape.params);
+
+  // Physical parameters in internal units (a = 1, 6 pi mu a = 1, kT = 1 when Brownian).
+  Physics ph;
+  ph.kT = ex.brownian ? 1.0 : 0.0;
+  ph.shear_rate = ex.brownian ? ex.peclet : 1.0;
+  const double diffusive = 1.0;  // a^2/D0 in internal time units
+  const double strain_unit = ph.shear_rate > 0 ? 1.0 / ph.shear_rate : 0.0;
+  std::string unit_name;
+  double time_scale = 0.0;
+  if (ex.time_unit == "diffusive" || (ex.time_unit == "paper" && ex.brownian && ex.peclet < 1.0)) {
+    if (!ex.brownian) throw ConfigError(ex.file + ": run.time_unit: diffusive time needs a Brownian run");
+    time_scale = diffusive;
+    unit_name = "a^2/D0";
+  } else {
+    if (strain_unit == 0.0)
+      throw ConfigError(ex.file + ": run.time_unit: strain units (1/gammadot) need flow.peclet > 0");
+    time_scale = strain_unit;
+    unit_name = "1/gammadot";
+  }
+
+  const double v_body = shape->volume();
+  double edge = ex.box_edge;
+  ph.volume_fraction = ex.volume_fraction;
+  if (edge > 0.0)
+    ph.volume_fraction = double(ex.count) * v_body / (edge * edge * edge);
+  else
+    edge = std::cbrt(double(ex.count) * v_body / ex.volume_fraction);
+
+  System sys(shape, std::size_t(ex.count), edge, ph);
+  log << "fldsim: " << ex.file << "\n"
+      << "system: " << ex.count << " x " << ex.shape.name << " (" << shape->nodes().size()
+      << " nodes, volume " << v_body << " a^3), phi = " << ph.volume_fraction << ", box edge " << edge << " a\n"
+      << "flow: " << (ex.brownian ? "Pe = " + std::to_string(ex.peclet) : std::string("non-Brownian (kT = 0), gammadot = 1"))
+      << "; times in " << unit_name << "\n";
+
+  auto hydro = registry.create<HydroModel>("hydro", ex.hydro.name, ex.hydro.params);
+  std::vector<std::shared_ptr<ForceLaw>> forces;
+  for (const auto& f : ex.forces) forces.push_back(registry.create<ForceLaw>("force", f.name, f.params));
+  std::vector<std::shared_ptr<Observer>> observers;
+  bool need_stress = false;
+  for (const auto& o : ex.observers) {
+    auto ob = registry.create<Observer>("observer", o.plugin.name, o.plugin.params);
+    ob->set_schedule(o.every, o.start * time_scale);
+    need_stress = need_stress || ob->needs().stress;
+    observers.push_back(ob);
+  }
+
+  Checkpoint resume;
+  if (!opt.resume.empty()) {
+    resume = read_checkpoint(opt.resume);
+    if (resume.positions.size() != sys.size())
+      throw Error(opt.resume + ": checkpoint has " + std::to_string(resume.positions.size()) + " bodies, experiment " +
+                  std::to_string(sys.size()));
+    if (resume.experiment_yaml != ex.resolved_yaml)
+      log << "warning: " << opt.resume << " was written by a different experiment file; resuming anyway\n";
+    sys.positions() = resume.positions;
+    sys.orientations() = resume.orientations;
+    sys.displacement() = resume.displacement;
+    sys.nonaffine_displacement() = resume.nonaffine;
+    sys.box().set_strain(resume.strain);
+    sys.set_time(resume.time);
+    sys.set_step(resume.step);
+    sys.update_nodes();
+    log << "start: resumed from " << opt.resume << " at step " << resume.step << "\n";
+  } else {
+    initialise(sys, ex, log);
+  }
+
+  double range = hydro->pair_range(sys);
+  for (const auto& f : forces) range = std::max(range, f->range(sys));
+  CellNeighbourList list;
+  list.configure(range, ex.skin);
+  sys.update_nodes();
+  list.update(sys);
+
+  HydroRequest request;
+  request.brownian = ph.kT > 0.0;
+  request.shear = ph.shear_rate != 0.0;
+  request.stresslets = need_stress;
+  std::vector<std::string> skipped = hydro->configure(sys, request);
+  if (!need_stress) skipped.push_back("no interparticle virial (no stress observer)");
+
+  const bool use_rk3 = ex.integrator == "rk3" || (ex.integrator == "auto" && !ex.brownian);
+  std::unique_ptr<TimeIntegrator> integrator;
+  if (use_rk3)
+    integrator = std::make_unique<RungeKutta3>(sys.size());
+  else
+    integrator = std::make_unique<EulerMaruyama>(std::uint64_t(ex.seed), request.brownian,
+                                                 ex.drift == "none" ? DriftScheme::None : DriftScheme::Midpoint,
+                                                 sys.size());
+  VelocityEvaluator evaluator(hydro, forces, list, sys.size());
+  if (!opt.resume.empty() && resume.warm_start.size() == evaluator.warm_start().size())
+    evaluator.warm_start() = resume.warm_start;
+
+  const double dt = ex.dt * time_scale;
+  const std::int64_t total_steps = std::int64_t(std::llround(ex.duration / ex.dt));
+  const std::int64_t checkpoint_steps =
+      ex.checkpoint_every > 0 ? std::max<std::int64_t>(1, std::llround(ex.checkpoint_every / ex.dt)) : 0;
+  log << "hydro: " << ex.hydro.name << "; integrator: " << integrator->describe() << "; dt = " << ex.dt << " "
+      << unit_name << ", " << total_steps << " steps; pair range " << range << " a + skin " << ex.skin << " a; "
+      << threads << " thread(s)\n";
+  for (const auto& s : skipped) log << "skipped: " << s << "\n";
+
+  RunInfo info;
+  info.total_steps = total_steps;
+  info.dt = dt;
+  info.time_unit = unit_name;
+  info.time_scale = time_scale;
+  info.output_path = output;
+  info.seed = std::uint64_t(ex.seed);
+
+  Hdf5ResultSink sink(output, opt.overwrite);
+  {
+    std::vector<std::array<std::string, 4>> table;
+    auto add = [&](const std::string& kind, const std::string& name) {
+      const PluginInfo& p = registry.find(kind, name);
+      table.push_back({kind, name, p.version, p.file});
+    };
+    add("shape", ex.shape.name);
+    add("hydro", ex.hydro.name);
+    for (const auto& f : ex.forces) add("force", f.name);
+    for (const auto& o : ex.observers) add("observer", o.plugin.name);
+    std::map<std::string, std::string> extra{{"time_unit", unit_name},
+                                             {"units", "lengths a (node radius), energies kT, time a^2/D0 internally"},
+                                             {"peclet", std::to_string(ex.peclet)},
+                                             {"volume_fraction", std::to_string(ph.volume_fraction)},
+                                             {"shape", ex.shape.name},
+                                             {"brownian", ex.brownian ? "true" : "false"},
+                                             {"integrator", integrator->describe()},
+                                             {"experiment_file", ex.file}};
+    if (ex.shape.params.has("c")) extra["shape_c"] = std::to_string(ex.shape.params.number("c"));
+    sink.write_parameters(ex.resolved_yaml, table, std::uint64_t(ex.seed), extra);
+  }
+  for (auto& o : observers) o->begin(sys, info, sink);
+
+  auto write_checkpoint_now = [&](const std::string& path) {
+    Checkpoint c;
+    c.positions = sys.positions();
+    c.orientations = sys.orientations();
+    c.displacement = sys.displacement();
+    c.nonaffine = sys.nonaffine_displacement();
+    c.time = sys.time();
+    c.strain = sys.box().strain();
+    c.box_edge = sys.box().edge();
+    c.step = sys.step();
+    c.seed = std::uint64_t(ex.seed);
+    c.experiment_yaml = ex.resolved_yaml;
+    c.warm_start = evaluator.warm_start();
+    write_checkpoint(path, c);
+  };
+  const std::string checkpoint_path = output + ".checkpoint";
+
+  std::int64_t cg_total = 0;
+  const auto loop0 = std::chrono::steady_clock::now();
+  const std::int64_t first = sys.step();
+  StressPieces stress;
+  while (sys.step() < total_steps) {
+    // Which observers sample after this step; only then is their extra work done.
+    const std::int64_t next = sys.step() + 1;
+    const double next_time = sys.time() + dt;
+    bool any_due = false, stress_due = false;
+    for (const auto& o : observers) {
+      const bool due = o->needs().every_step || o->due(next, next_time);
+      any_due = any_due || due;
+      stress_due = stress_due || (due && o->needs().stress);
+    }
+    integrator->step(sys, evaluator, dt, stress_due);
+    const SolveStats st = evaluator.stats();
+    cg_total += st.iterations;
+    const double* U = integrator->step_velocity();
+    for (std::size_t k = 0; k < 6 * sys.size(); ++k)
+      if (!std::isfinite(U[k]))
+        throw Error("step " + std::to_string(sys.step()) + ": velocity of body " + std::to_string(k / 6) +
+                    " is not finite (overlap or time step too large? min gap " +
+                    std::to_string(list.min_gap(sys)) + " a)");
+    if (any_due) {
+      if (stress_due) {
+        stress.hydrodynamic = hydro->stresslet_sum(sys, evaluator.pairs(), integrator->step_relative_velocity());
+        stress.interparticle = -evaluator.virial();
+      }
+      StepView view{sys, evaluator.pairs(), info, U, evaluator.force(), stress_due ? &stress : nullptr, st,
+                    list.min_gap(sys)};
+      for (auto& o : observers)
+        if (o->needs().every_step || o->due(sys.step(), sys.time())) o->sample(view, sink);
+    }
+    if (checkpoint_steps > 0 && sys.step() % checkpoint_steps == 0) write_checkpoint_now(checkpoint_path);
+  }
+  for (auto& o : observers) o->finish(info, sink);
+  write_checkpoint_now(checkpoint_path);
+  sink.commit();
+
+  const double loop_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - loop0).count();
+  const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  const std::int64_t done = sys.step() - first;
+  log << "done: " << done << " steps in " << format_time(loop_s) << " ("
+      << (done > 0 ? std::to_string(1000.0 * loop_s / double(done)) : std::string("-")) << " ms/step, "
+      << (done > 0 ? double(cg_total) / double(done) : 0.0) << " CG iterations/step, " << list.rebuilds()
+      << " neighbour rebuilds); total " << format_time(wall_s) << "\n"
+      << "results: " << output << "   (fldsim summary " << output << "; python3 tools/plot_run.py " << output
+      << ")\ncheckpoint: " << checkpoint_path << "\n";
+  return 0;
+}
+
+}  // namespace fldsim
