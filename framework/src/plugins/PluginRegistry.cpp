@@ -1,0 +1,231 @@
+#include "plugins/PluginRegistry.hpp"
+
+#include <dlfcn.h>
+
+#include <algorithm>
+#include <boost/core/demangle.hpp>
+#include <boost/dll/shared_library.hpp>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+
+#include "config/DidYouMean.hpp"
+#include "fldsim/api.hpp"
+#include "fldsim/plugin.hpp"
+
+namespace fldsim {
+
+namespace fs = std::filesystem;
+
+struct PluginRegistry::Loaded {
+  std::shared_ptr<boost::dll::shared_library> library;
+  PluginCreateFn* create = nullptr;
+};
+
+namespace {
+
+const char* const kKinds[] = {"shape", "hydro", "force", "observer"};
+
+bool is_known_kind(const std::string& kind) {
+  return std::find(std::begin(kKinds), std::end(kKinds), kind) != std::end(kKinds);
+}
+
+std::string join(const std::vector<std::string>& items, const char* separator = ", ") {
+  std::string out;
+  for (std::size_t i = 0; i < items.size(); ++i) out += (i ? separator : "") + items[i];
+  return out;
+}
+
+std::string api_text(unsigned major, unsigned minor) {
+  return std::to_string(major) + "." + std::to_string(minor);
+}
+
+// Why a descriptor cannot be used, or "" when it can.
+std::string descriptor_problem(const fldsim_plugin_descriptor_t& d) {
+  if (d.api_major != FLDSIM_API_MAJOR || d.api_minor > FLDSIM_API_MINOR)
+    return "plugin API " + api_text(d.api_major, d.api_minor) + " does not match this fldsim (API " +
+           api_text(FLDSIM_API_MAJOR, FLDSIM_API_MINOR) + "); rebuild the plugin against this fldsim";
+  if (!d.kind || !d.name || !d.version || !d.summary || !d.build_tag)
+    return "malformed fldsim_plugin_descriptor (a null string)";
+  if (std::strcmp(d.build_tag, FLDSIM_BUILD_TAG) != 0)
+    return std::string("plugin build tag '") + d.build_tag + "' does not match this fldsim's '" +
+           FLDSIM_BUILD_TAG + "'; rebuild the plugin against this fldsim with the same compiler";
+  if (!is_known_kind(d.kind))
+    return std::string("unknown plugin kind '") + d.kind + "' (expected shape, hydro, force or observer)";
+  return "";
+}
+
+// Identity of a directory for de-duplication (the same place named two ways).
+std::string canonical_or_same(const std::string& dir) {
+  std::error_code ec;
+  const fs::path p = fs::weakly_canonical(dir, ec);
+  return ec ? dir : p.string();
+}
+
+}  // namespace
+
+PluginRegistry::PluginRegistry(const std::vector<std::string>& directories) {
+  std::vector<std::string> seen;
+  for (const auto& dir : directories) {
+    const std::string id = canonical_or_same(dir);
+    if (std::find(seen.begin(), seen.end(), id) != seen.end()) continue;
+    seen.push_back(id);
+    directories_.push_back(dir);
+
+    std::error_code ec;
+    std::vector<std::string> files;
+    for (const auto& entry : fs::directory_iterator(dir, ec)) {
+      std::error_code type_ec;
+      if (entry.path().extension() == ".so" && !entry.is_directory(type_ec))
+        files.push_back(entry.path().string());
+    }
+    if (ec) {
+      failures_.push_back(dir + ": cannot list directory: " + ec.message());
+      continue;
+    }
+    std::sort(files.begin(), files.end());  // directory order is arbitrary; results must not be
+    for (const auto& file : files) scan_file(file);
+  }
+}
+
+PluginRegistry::~PluginRegistry() = default;
+
+void PluginRegistry::scan_file(const std::string& file) {
+  auto fail = [&](const std::string& reason, const std::string& kind = "", const std::string& name = "") {
+    failures_.push_back(file + ": " + reason);
+    failed_files_.push_back({file, kind, name});
+  };
+
+  auto library = std::make_shared<boost::dll::shared_library>();
+  std::error_code ec;
+  library->load(file, boost::dll::load_mode::rtld_now, ec);
+  if (ec) {
+    // Boost.DLL leaves the loader's own explanation (e.g. "undefined symbol: ...") in dlerror().
+    const char* why = dlerror();
+    fail(std::string("cannot load: ") + (why ? why : ec.message()));
+    return;
+  }
+  if (!library->has("fldsim_plugin_descriptor")) {
+    fail("not an fldsim plugin (no fldsim_plugin_descriptor)");
+    return;
+  }
+  const auto& d = library->get<const fldsim_plugin_descriptor_t>("fldsim_plugin_descriptor");
+  const std::string kind = d.kind ? d.kind : "";
+  const std::string name = d.name ? d.name : "";
+  if (const std::string problem = descriptor_problem(d); !problem.empty()) {
+    fail(problem, kind, name);
+    return;
+  }
+  for (const auto& p : plugins_) {
+    if (p.kind == kind && p.name == name) {
+      shadowed_.push_back(file + ": ignored, " + kind + " plugin '" + name + "' already provided by " +
+                          p.file);
+      return;
+    }
+  }
+  if (!library->has("fldsim_describe") || !library->has("fldsim_create")) {
+    fail("has a descriptor but no fldsim_describe/fldsim_create entry points (not built with FLDSIM_PLUGIN)",
+         kind, name);
+    return;
+  }
+
+  PluginInfo info{file, kind, name, d.version, d.summary, {}};
+  try {
+    library->get_alias<PluginDescribeFn>("fldsim_describe")(info.schema);
+  } catch (const std::exception& e) {
+    fail(std::string("describe() failed: ") + e.what(), kind, name);
+    return;
+  }
+  Loaded loaded{library, &library->get_alias<PluginCreateFn>("fldsim_create")};
+  plugins_.push_back(std::move(info));
+  loaded_.push_back(std::move(loaded));
+}
+
+std::vector<std::string> PluginRegistry::search_path(const std::vector<std::string>& yaml_paths,
+                                                     const std::string& yaml_dir) {
+  std::vector<std::string> candidates;
+  for (const auto& p : yaml_paths) {
+    const fs::path path(p);
+    candidates.push_back((path.is_absolute() ? path : fs::path(yaml_dir) / path).lexically_normal().string());
+  }
+  if (const char* env = std::getenv("FLDSIM_PLUGIN_PATH")) {
+    const std::string value = env;
+    std::size_t start = 0;
+    while (start <= value.size()) {
+      const std::size_t end = std::min(value.find(':', start), value.size());
+      if (end > start) candidates.push_back(value.substr(start, end - start));
+      start = end + 1;
+    }
+  }
+  candidates.push_back(FLDSIM_PLUGIN_BUILD_DIR);
+  candidates.push_back(FLDSIM_PLUGIN_INSTALL_DIR);
+
+  std::vector<std::string> result, ids;
+  for (const auto& dir : candidates) {
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec)) continue;
+    const std::string id = canonical_or_same(dir);
+    if (std::find(ids.begin(), ids.end(), id) != ids.end()) continue;
+    ids.push_back(id);
+    result.push_back(dir);
+  }
+  return result;
+}
+
+std::vector<std::string> PluginRegistry::related_failures(const std::string& kind,
+                                                          const std::string& name) const {
+  // A failed file is related when its descriptor names this plugin or, if it could not be read,
+  // when its file name ends in the plugin name (fldsim-hydro-fld.so, libfld.so, fld.so).
+  std::vector<std::string> out;
+  for (std::size_t i = 0; i < failed_files_.size(); ++i) {
+    const auto& f = failed_files_[i];
+    bool related = false;
+    if (!f.name.empty()) {
+      related = f.kind == kind && f.name == name;
+    } else {
+      const std::string stem = fs::path(f.file).stem().string();
+      related =
+          stem == name || stem == "lib" + name ||
+          (stem.size() > name.size() && stem.compare(stem.size() - name.size(), name.size(), name) == 0 &&
+           stem[stem.size() - name.size() - 1] == '-');
+    }
+    if (related) out.push_back(failures_[i]);
+  }
+  return out;
+}
+
+const PluginInfo& PluginRegistry::find(const std::string& kind, const std::string& name) const {
+  std::vector<std::string> available;
+  for (const auto& p : plugins_) {
+    if (p.kind != kind) continue;
+    if (p.name == name) return p;
+    available.push_back(p.name);
+  }
+  std::sort(available.begin(), available.end());
+  std::string message = "no " + kind + " plugin named '" + name + "'";
+  if (const std::string guess = did_you_mean(name, available); !guess.empty())
+    message += " (did you mean '" + guess + "'?)";
+  message += "; available: " + (available.empty() ? std::string("none") : join(available));
+  message += "; searched: " + (directories_.empty() ? std::string("no directories") : join(directories_));
+  for (const auto& failure : related_failures(kind, name)) message += "; a candidate failed: " + failure;
+  throw PluginError(message);
+}
+
+Component* PluginRegistry::make(const std::string& kind, const std::string& name, const Params& params,
+                                std::shared_ptr<boost::dll::shared_library>& library) const {
+  const PluginInfo& info = find(kind, name);
+  const auto index = static_cast<std::size_t>(&info - plugins_.data());
+  library = loaded_[index].library;
+  Component* made = loaded_[index].create(params);
+  if (!made) throw PluginError(info.file + ": " + kind + " plugin '" + name + "' returned no object");
+  return made;
+}
+
+void PluginRegistry::throw_wrong_type(const std::string& kind, const std::string& name,
+                                      const std::type_info& wanted) const {
+  const PluginInfo& info = find(kind, name);
+  throw PluginError(info.file + ": " + kind + " plugin '" + name + "' made an object that is not a " +
+                    boost::core::demangle(wanted.name()));
+}
+
+}  // namespace fldsim
