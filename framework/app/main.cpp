@@ -1,6 +1,8 @@
 // The fldsim command line: run, check, plugins, summary. Exit codes: 0 success, 1 run-time
 // failure, 2 bad input (experiment file, command line).
 #include <iostream>
+#include <sstream>
+#include <variant>
 #include <string>
 #include <vector>
 
@@ -54,6 +56,26 @@ const char* kPluginsHelp =
 const char* kSummaryHelp =
     "usage: fldsim summary RUN.h5\n"
     "Prints every steady-state scalar under /results as a table: name, value, standard error, unit.\n";
+
+std::string format_default(const fldsim::ParamValue& v) {
+  std::ostringstream out;
+  std::visit(
+      [&](const auto& x) {
+        using T = std::decay_t<decltype(x)>;
+        if constexpr (std::is_same_v<T, bool>)
+          out << (x ? "true" : "false");
+        else if constexpr (std::is_same_v<T, std::string>)
+          out << (x.empty() ? "''" : x);
+        else if constexpr (std::is_same_v<T, std::vector<double>>)
+          out << (x.empty() ? "[]" : "[...]");
+        else if constexpr (std::is_same_v<T, std::vector<std::vector<double>>>)
+          out << (x.empty() ? "[]" : "[[...]]");
+        else
+          out << x;
+      },
+      v);
+  return out.str();
+}
 
 bool is_help(const std::string& a) { return a == "-h" || a == "--help"; }
 
@@ -129,7 +151,8 @@ int cmd_plugins(const std::vector<std::string>& args) {
     for (const auto& s : p.schema.specs()) {
       std::cout << "  " << s.name << ": " << s.expectation();
       if (!s.unit.empty()) std::cout << " [" << s.unit << "]";
-      std::cout << (s.default_value ? "" : " (required)") << " — " << s.help << "\n";
+      std::cout << (s.default_value ? ", default " + format_default(*s.default_value) : std::string(" (required)"))
+                << " — " << s.help << "\n";
     }
   }
   for (const auto& f : registry.failures()) std::cout << "\nnot loaded: " << f << "\n";
