@@ -1,0 +1,83 @@
+// The run's result file: HDF5 in the H5MD 1.1 layout (de Buyl, Colberg & Höfling, Comput. Phys.
+// Commun. 185, 1546 (2014); spec h5md.mdwn release 1.1.0). Root group `h5md` with version {1,1},
+// author and creator; `/parameters` with the resolved experiment; observer results under the
+// paths they choose (steady-state numbers under /results, trajectories under /particles).
+//
+// Everything is written into `<path>.part`; commit() renames it to `path` only at the end of a
+// successful run, so an existing result is never lost and a crashed run never leaves a half
+// file under the real name.
+#pragma once
+
+#include <H5Cpp.h>
+
+#include <array>
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "fldsim/api.hpp"
+#include "fldsim/results.hpp"
+
+namespace fldsim {
+
+class FLDSIM_VISIBLE Hdf5ResultSink : public ResultSink {
+ public:
+  // Throws fldsim::Error if `path` exists and !overwrite, or if the file cannot be created.
+  Hdf5ResultSink(const std::string& path, bool overwrite);
+  ~Hdf5ResultSink() override;
+  Hdf5ResultSink(const Hdf5ResultSink&) = delete;
+  Hdf5ResultSink& operator=(const Hdf5ResultSink&) = delete;
+
+  // /parameters: the resolved YAML (dataset `experiment`), the plugin table (dataset `plugins`,
+  // strings [n][4] with columns kind, name, version, file), the seed and `extra` attributes
+  // (e.g. time_unit, units).
+  void write_parameters(const std::string& resolved_yaml,
+                        const std::vector<std::array<std::string, 4>>& plugins, std::uint64_t seed,
+                        const std::map<std::string, std::string>& extra);
+
+  void write_scalar(const std::string& path, double value, double stderr_value, const std::string& unit,
+                    const std::string& description) override;
+  void write_array(const std::string& path, const std::vector<std::size_t>& shape, const double* data,
+                   const std::string& unit, const std::string& description) override;
+  void append_sample(const std::string& path, std::int64_t step, double time,
+                     const std::vector<std::size_t>& shape, const double* data,
+                     const std::string& unit) override;
+  void write_attribute(const std::string& path, const std::string& key, const std::string& value) override;
+  void write_int_attribute(const std::string& path, const std::string& key,
+                           const std::vector<std::int64_t>& values) override;
+  void write_string_list_attribute(const std::string& path, const std::string& key,
+                                   const std::vector<std::string>& values) override;
+
+  // Push buffered data to disk (the .part file is readable up to here after a crash).
+  void flush();
+  // Close the file and rename `<path>.part` to `path`. Nothing may be written afterwards.
+  void commit();
+
+  const std::string& path() const { return path_; }
+  const std::string& part_path() const { return part_path_; }
+
+ private:
+  // An H5MD time-dependent element being appended to.
+  struct TimeSeries {
+    H5::DataSet step, time, value;
+    std::vector<hsize_t> sample_shape;  // shape of one sample
+    std::vector<hsize_t> extent;        // current value extent: {count, sample_shape...}
+    std::vector<hsize_t> offset;        // hyperslab start, {count, 0, ...}
+    std::vector<hsize_t> block;         // hyperslab count, {1, sample_shape...}
+  };
+  TimeSeries& time_series(const std::string& path, const std::vector<std::size_t>& shape,
+                          const std::string& unit);
+  void check_open(const char* what) const;
+  // Apply `fn` to the group or dataset at `path` (a group is created if nothing is there).
+  template <class Fn>
+  void on_object(const std::string& path, Fn&& fn);
+
+  std::string path_;
+  std::string part_path_;
+  H5::H5File file_;
+  bool open_ = false;
+  std::map<std::string, TimeSeries> series_;
+};
+
+}  // namespace fldsim

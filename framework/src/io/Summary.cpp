@@ -1,0 +1,111 @@
+#include "io/Summary.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <vector>
+
+#include "fldsim/error.hpp"
+#include "io/H5Helpers.hpp"
+
+namespace fldsim {
+
+namespace {
+
+std::string printf_string(const char* format, int precision, double x) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, format, precision, x);
+  return buffer;
+}
+
+struct Row {
+  std::string name, value, stderr_text, unit;
+};
+
+void collect(const H5::Group& group, const std::string& prefix, std::vector<Row>& rows) {
+  for (hsize_t i = 0; i < group.getNumObjs(); ++i) {
+    const std::string name = group.getObjnameByIdx(i);
+    const std::string full = prefix.empty() ? name : prefix + "/" + name;
+    const H5O_type_t type = group.childObjType(name);
+    if (type == H5O_TYPE_GROUP) {
+      collect(group.openGroup(name), full, rows);
+      continue;
+    }
+    if (type != H5O_TYPE_DATASET) continue;
+    H5::DataSet d = group.openDataSet(name);
+    const H5T_class_t cls = d.getTypeClass();
+    if ((cls != H5T_FLOAT && cls != H5T_INTEGER) || d.getSpace().getSimpleExtentNpoints() != 1) continue;
+    double value = 0.0;
+    d.read(&value, H5::PredType::NATIVE_DOUBLE);
+    const double err = d.attrExists("stderr") ? io::read_double_attribute(d, "stderr") : std::nan("");
+    Row row;
+    row.name = full;
+    format_with_error(value, err, row.value, row.stderr_text);
+    row.unit = d.attrExists("unit") ? io::read_string_attribute(d, "unit") : "";
+    rows.push_back(std::move(row));
+  }
+}
+
+}  // namespace
+
+void format_with_error(double value, double stderr_value, std::string& value_text, std::string& stderr_text) {
+  if (!std::isfinite(stderr_value) || stderr_value <= 0.0 || !std::isfinite(value)) {
+    value_text = printf_string("%.*g", 6, value);
+    stderr_text = stderr_value == 0.0 ? "0" : "n/a";
+    return;
+  }
+  // Position (power of ten) of the last printed digit: the second significant digit of the error.
+  const int last = static_cast<int>(std::floor(std::log10(stderr_value))) - 1;
+  const double magnitude = std::fabs(value);
+  const bool fixed = (magnitude == 0.0 || (magnitude >= 1e-3 && magnitude < 1e6)) && last >= -12;
+  if (fixed) {
+    const int decimals = std::max(0, -last);
+    value_text = printf_string("%.*f", decimals, value);
+    stderr_text = printf_string("%.*f", decimals, stderr_value);
+  } else {
+    const int exponent = magnitude > 0.0 ? static_cast<int>(std::floor(std::log10(magnitude))) : last;
+    const int digits = std::clamp(exponent - last + 1, 1, 17);
+    value_text = printf_string("%.*e", digits - 1, value);
+    stderr_text = printf_string("%.*e", 1, stderr_value);
+  }
+}
+
+int print_summary(const std::string& path, std::ostream& out) {
+  io::quiet_hdf5();
+  if (!std::filesystem::exists(path)) throw Error(path + ": file not found");
+  std::vector<Row> rows;
+  try {
+    H5::H5File file(path, H5F_ACC_RDONLY);
+    H5::Group root = file.openGroup("/");
+    if (!io::path_exists(root, "results") || root.childObjType("results") != H5O_TYPE_GROUP)
+      throw Error(path + ": no /results group (did the run finish and have observers that write results?)");
+    collect(root.openGroup("results"), "", rows);
+  } catch (const H5::Exception& e) {
+    io::fail(path, "cannot read the result file", e);
+  }
+
+  Row header{"name", "value", "stderr", "unit"};
+  std::size_t w[4] = {header.name.size(), header.value.size(), header.stderr_text.size(), header.unit.size()};
+  for (const auto& r : rows) {
+    w[0] = std::max(w[0], r.name.size());
+    w[1] = std::max(w[1], r.value.size());
+    w[2] = std::max(w[2], r.stderr_text.size());
+    w[3] = std::max(w[3], r.unit.size());
+  }
+  auto print = [&](const Row& r) {
+    std::string line = r.name + std::string(w[0] - r.name.size() + 2, ' ');
+    line += std::string(w[1] - r.value.size(), ' ') + r.value + "  ";
+    line += std::string(w[2] - r.stderr_text.size(), ' ') + r.stderr_text + "  " + r.unit;
+    while (!line.empty() && line.back() == ' ') line.pop_back();
+    out << line << '\n';
+  };
+  out << path << ": " << rows.size() << " scalar result" << (rows.size() == 1 ? "" : "s")
+      << " under /results\n";
+  print(header);
+  out << std::string(w[0] + w[1] + w[2] + w[3] + 6, '-') << '\n';
+  for (const auto& r : rows) print(r);
+  return 0;
+}
+
+}  // namespace fldsim

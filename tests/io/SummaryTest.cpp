@@ -1,0 +1,79 @@
+// `fldsim summary`: every scalar under /results with its error and unit, values rounded to
+// the precision of their error (two significant digits of the error).
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+#include "IoTestSupport.hpp"
+#include "fldsim/error.hpp"
+#include "io/Hdf5ResultSink.hpp"
+#include "io/Summary.hpp"
+
+namespace fldsim {
+namespace {
+
+TEST(Summary, FormatsValuesToThePrecisionOfTheirError) {
+  std::string v, e;
+  format_with_error(0.785312, 0.00123, v, e);
+  EXPECT_EQ(v, "0.7853");
+  EXPECT_EQ(e, "0.0012");
+  format_with_error(12345.6, 78.0, v, e);
+  EXPECT_EQ(v, "12346");
+  EXPECT_EQ(e, "78");
+  format_with_error(-3.2e-7, 1.1e-8, v, e);
+  EXPECT_EQ(v, "-3.20e-07");
+  EXPECT_EQ(e, "1.1e-08");
+  format_with_error(2.0 / 3.0, 0.0, v, e);  // exact value: 6 significant digits
+  EXPECT_EQ(v, "0.666667");
+  EXPECT_EQ(e, "0");
+}
+
+TEST(Summary, PrintsEveryScalarWithErrorAndUnit) {
+  test::ScratchDir dir;
+  const std::string path = dir.file("run.h5");
+  {
+    Hdf5ResultSink sink(path, false);
+    sink.write_scalar("/results/orientation/delta_theta_m", 0.785312, 0.00123, "rad", "");
+    sink.write_scalar("/results/stress/eta_r", 12345.6, 78.0, "mu", "");
+    sink.write_scalar("/results/diffusion/long_time/D_zz", -3.2e-7, 1.1e-8, "a^2 D0/a^2", "");
+    const double g[3] = {1, 2, 3};
+    sink.write_array("/results/pair/g_r", {3}, g, "", "not a scalar: not printed");
+    sink.append_sample("/observables/energy", 0, 0.0, {}, g, "kT");
+    sink.commit();
+  }
+  std::ostringstream out;
+  EXPECT_EQ(print_summary(path, out), 0);
+  const std::string text = out.str();
+  for (const char* expected :
+       {"orientation/delta_theta_m", "0.7853", "0.0012", "rad", "stress/eta_r", "12346", "78", "mu",
+        "diffusion/long_time/D_zz", "-3.20e-07", "1.1e-08", "a^2 D0/a^2"})
+    EXPECT_NE(text.find(expected), std::string::npos) << "missing '" << expected << "' in\n" << text;
+  EXPECT_EQ(text.find("g_r"), std::string::npos) << text;
+  EXPECT_NE(text.find("3 scalar results"), std::string::npos) << text;
+  // One row per scalar, on its own line with value, error and unit in that order.
+  EXPECT_NE(text.find("stress/eta_r"), std::string::npos);
+  const std::size_t row = text.find("stress/eta_r");
+  const std::string line = text.substr(row, text.find('\n', row) - row);
+  EXPECT_LT(line.find("12346"), line.find("78"));
+  EXPECT_LT(line.find("78"), line.find("mu"));
+}
+
+TEST(Summary, FileWithoutResultsIsAnError) {
+  test::ScratchDir dir;
+  const std::string path = dir.file("empty.h5");
+  {
+    Hdf5ResultSink sink(path, false);
+    sink.commit();
+  }
+  std::ostringstream out;
+  try {
+    print_summary(path, out);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("no /results"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(print_summary(dir.file("missing.h5"), out), Error);
+}
+
+}  // namespace
+}  // namespace fldsim
