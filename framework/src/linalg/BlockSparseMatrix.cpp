@@ -1,0 +1,161 @@
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+
+#include "fldsim/block_sparse.hpp"
+
+namespace fldsim {
+
+void BlockSparseMatrix::set_pattern(std::size_t n,
+                                    const std::vector<std::pair<std::uint32_t, std::uint32_t>>& upper) {
+  diag_.assign(n, Mat6::Zero());
+  // Sort and deduplicate the (i, j) pairs: rows in order, columns ascending within a row.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> sorted(upper);
+  std::sort(sorted.begin(), sorted.end());
+  sorted.erase(std::unique(sorted.begin(), sorted.end()), sorted.end());
+
+  row_start_.assign(n + 1, 0);
+  col_.resize(sorted.size());
+  for (const auto& [i, j] : sorted) ++row_start_[i + 1];
+  for (std::size_t i = 0; i < n; ++i) row_start_[i + 1] += row_start_[i];
+  for (std::size_t k = 0; k < sorted.size(); ++k) col_[k] = sorted[k].second;
+  values_.assign(sorted.size(), Mat6::Zero());
+
+  // Transposed index: for column j, the stored blocks (i, j) in increasing i (the sorted order
+  // guarantees it), so the lower part of a row is summed in a fixed order.
+  col_start_.assign(n + 1, 0);
+  for (const auto& [i, j] : sorted) ++col_start_[j + 1];
+  for (std::size_t j = 0; j < n; ++j) col_start_[j + 1] += col_start_[j];
+  by_col_.resize(sorted.size());
+  by_col_row_.resize(sorted.size());
+  std::vector<std::int64_t> fill(col_start_.begin(), col_start_.end() - 1);
+  for (std::size_t k = 0; k < sorted.size(); ++k) {
+    const auto [i, j] = sorted[k];
+    by_col_[fill[j]] = std::int64_t(k);
+    by_col_row_[fill[j]] = i;
+    ++fill[j];
+  }
+}
+
+void BlockSparseMatrix::set_zero() {
+  for (auto& d : diag_) d.setZero();
+  for (auto& v : values_) v.setZero();
+}
+
+std::int64_t BlockSparseMatrix::find(std::uint32_t i, std::uint32_t j) const {
+  if (i >= diag_.size()) return -1;
+  const auto first = col_.begin() + row_start_[i];
+  const auto last = col_.begin() + row_start_[i + 1];
+  const auto it = std::lower_bound(first, last, j);
+  if (it == last || *it != j) return -1;
+  return std::int64_t(it - col_.begin());
+}
+
+void BlockSparseMatrix::multiply(const double* x, double* y) const {
+  const std::int64_t n = std::int64_t(diag_.size());
+  // Each block row is owned by one thread and summed in a fixed order (lower part by increasing
+  // row index, diagonal, upper part by increasing column), so y does not depend on the thread count.
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    Vec6 acc = Vec6::Zero();
+    for (std::int64_t k = col_start_[i]; k < col_start_[i + 1]; ++k)
+      acc.noalias() += values_[by_col_[k]].transpose() * Eigen::Map<const Vec6>(x + 6 * by_col_row_[k]);
+    acc.noalias() += diag_[i] * Eigen::Map<const Vec6>(x + 6 * i);
+    for (std::int64_t k = row_start_[i]; k < row_start_[i + 1]; ++k)
+      acc.noalias() += values_[k] * Eigen::Map<const Vec6>(x + 6 * std::size_t(col_[k]));
+    Eigen::Map<Vec6>(y + 6 * i) = acc;
+  }
+}
+
+Eigen::MatrixXd BlockSparseMatrix::dense() const {
+  const std::size_t n = diag_.size();
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(6 * n, 6 * n);
+  for (std::size_t i = 0; i < n; ++i) {
+    A.block<6, 6>(6 * i, 6 * i) = diag_[i];
+    for (std::int64_t k = row_start_[i]; k < row_start_[i + 1]; ++k) {
+      const std::size_t j = col_[k];
+      A.block<6, 6>(6 * i, 6 * j) += values_[k];
+      A.block<6, 6>(6 * j, 6 * i) += values_[k].transpose();
+    }
+  }
+  return A;
+}
+
+void BlockJacobiPCG::prepare(const BlockSparseMatrix& A) {
+  const std::size_t n = A.blocks();
+  inv_diag_.resize(n);
+  r_.resize(6 * n);
+  z_.resize(6 * n);
+  p_.resize(6 * n);
+  q_.resize(6 * n);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < std::int64_t(n); ++i) {
+    // Diagonal blocks of an SPD matrix are SPD: invert through their Cholesky factor.
+    Eigen::LLT<Mat6> llt(A.diagonal(std::size_t(i)));
+    inv_diag_[i] = llt.solve(Mat6::Identity());
+  }
+}
+
+namespace {
+// Dot product summed in a fixed order per block, then over blocks serially: reproducible.
+double dot(const std::vector<double>& a, const std::vector<double>& b) {
+  double s = 0.0;
+  for (std::size_t k = 0; k < a.size(); ++k) s += a[k] * b[k];
+  return s;
+}
+}  // namespace
+
+BlockJacobiPCG::Result BlockJacobiPCG::solve(const BlockSparseMatrix& A, const double* b, double* x,
+                                             double tolerance, int max_iterations) {
+  const std::size_t n = A.blocks();
+  const std::size_t m = 6 * n;
+  Result result;
+  double bnorm = 0.0;
+  for (std::size_t k = 0; k < m; ++k) bnorm += b[k] * b[k];
+  bnorm = std::sqrt(bnorm);
+  if (bnorm == 0.0) {
+    std::fill(x, x + m, 0.0);
+    result.converged = true;
+    return result;
+  }
+  auto precondition = [&](const std::vector<double>& in, std::vector<double>& out) {
+#pragma omp parallel for schedule(static)
+    for (std::int64_t i = 0; i < std::int64_t(n); ++i)
+      Eigen::Map<Vec6>(out.data() + 6 * i) = inv_diag_[i] * Eigen::Map<const Vec6>(in.data() + 6 * i);
+  };
+
+  A.multiply(x, q_.data());
+  for (std::size_t k = 0; k < m; ++k) r_[k] = b[k] - q_[k];
+  double rnorm = std::sqrt(dot(r_, r_));
+  result.relative_residual = rnorm / bnorm;
+  if (result.relative_residual <= tolerance) {
+    result.converged = true;
+    return result;
+  }
+  precondition(r_, z_);
+  p_ = z_;
+  double rz = dot(r_, z_);
+  for (int it = 1; it <= max_iterations; ++it) {
+    A.multiply(p_.data(), q_.data());
+    const double alpha = rz / dot(p_, q_);
+    for (std::size_t k = 0; k < m; ++k) {
+      x[k] += alpha * p_[k];
+      r_[k] -= alpha * q_[k];
+    }
+    rnorm = std::sqrt(dot(r_, r_));
+    result.iterations = it;
+    result.relative_residual = rnorm / bnorm;
+    if (result.relative_residual <= tolerance) {
+      result.converged = true;
+      return result;
+    }
+    precondition(r_, z_);
+    const double rz_new = dot(r_, z_);
+    const double beta = rz_new / rz;
+    rz = rz_new;
+    for (std::size_t k = 0; k < m; ++k) p_[k] = z_[k] + beta * p_[k];
+  }
+  return result;
+}
+
+}  // namespace fldsim

@@ -1,0 +1,143 @@
+#include "BodyResistance.hpp"
+
+#include "Visibility.hpp"
+#include "fldsim/rigid.hpp"
+
+namespace fldsim::hydro {
+
+bool BodyResistance::update(const System& system, const NodePairList& pairs) {
+  const std::size_t m = system.nodes_per_body();
+  bodies_ = system.size();
+  radii_.resize(m);
+  for (std::size_t k = 0; k < m; ++k) radii_[k] = system.node_radius(k);
+  const auto& offsets = system.node_offsets();
+
+  candidates_.clear();
+  for (const NodePair& p : pairs.pairs()) {
+    const Vec3* off_i = offsets.data() + std::size_t(p.body_i) * m;
+    const Vec3* off_j = offsets.data() + std::size_t(p.body_j) * m;
+    if (!nodes_visible(off_i, off_j, radii_.data(), m, p.node_a, p.node_b, p.r, cutoff_)) continue;
+    candidates_.push_back(
+        {p.body_i, p.body_j, p.node_a, p.node_b, p.r, p.r - off_j[p.node_b] + off_i[p.node_a]});
+  }
+  const bool changed = !(candidates_ == accepted_);
+  if (changed) {
+    accepted_.swap(candidates_);
+    const std::size_t n = accepted_.size();
+    rows_.resize(n);
+    block_ii_.resize(n);
+    block_jj_.resize(n);
+    block_ij_.resize(n);
+    pair_force_.resize(n);
+  } else {
+    for (std::size_t k = 0; k < accepted_.size(); ++k) {
+      accepted_[k].separation = candidates_[k].separation;
+      accepted_[k].centre_separation = candidates_[k].centre_separation;
+    }
+  }
+
+  const double mu = system.physics().viscosity;
+#pragma omp parallel for schedule(static)
+  for (std::int64_t k = 0; k < std::int64_t(accepted_.size()); ++k) {
+    const Accepted& p = accepted_[k];
+    PairRows S;
+    LubricationPair::rows(radii_[p.node_a], radii_[p.node_b], p.separation, mu, options_, S);
+    const Mat6 Ka = node_kinematics(offsets[std::size_t(p.body_i) * m + p.node_a]);
+    const Mat6 Kb = node_kinematics(offsets[std::size_t(p.body_j) * m + p.node_b]);
+    BodyRows& B = rows_[k];
+    B.leftCols<6>().noalias() = S.leftCols<6>() * Ka;
+    B.rightCols<6>().noalias() = S.rightCols<6>() * Kb;
+    // Gram blocks, symmetrised so that R is symmetric to the last bit (the product kernel does
+    // not promise it).
+    const Mat6 ii = B.leftCols<6>().transpose() * B.leftCols<6>();
+    const Mat6 jj = B.rightCols<6>().transpose() * B.rightCols<6>();
+    block_ii_[k] = 0.5 * (ii + ii.transpose());
+    block_jj_[k] = 0.5 * (jj + jj.transpose());
+    block_ij_[k].noalias() = B.leftCols<6>().transpose() * B.rightCols<6>();
+  }
+  return changed;
+}
+
+std::vector<std::pair<std::uint32_t, std::uint32_t>> BodyResistance::body_pairs() const {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> out;
+  out.reserve(accepted_.size());
+  for (const Accepted& p : accepted_) out.emplace_back(p.body_i, p.body_j);
+  return out;
+}
+
+void BodyResistance::bind(const BlockSparseMatrix& A) {
+  for (Accepted& p : accepted_) p.upper = A.find(p.body_i, p.body_j);
+}
+
+void BodyResistance::add_to(BlockSparseMatrix& A) const {
+  // Serial, in pair order: every block receives its terms in a fixed order.
+  for (std::size_t k = 0; k < accepted_.size(); ++k) {
+    const Accepted& p = accepted_[k];
+    A.diagonal(p.body_i) += block_ii_[k];
+    A.diagonal(p.body_j) += block_jj_[k];
+    A.upper(p.upper) += block_ij_[k];
+  }
+}
+
+void BodyResistance::sum_per_body(double* out) const {
+  for (std::size_t k = 0; k < accepted_.size(); ++k) {
+    const Accepted& p = accepted_[k];
+    Eigen::Map<Vec6>(out + 6 * std::size_t(p.body_i)) += pair_force_[k].head<6>();
+    Eigen::Map<Vec6>(out + 6 * std::size_t(p.body_j)) += pair_force_[k].tail<6>();
+  }
+}
+
+void BodyResistance::add_strain_force(const Eigen::Matrix3d& E, double* rhs) {
+#pragma omp parallel for schedule(static)
+  for (std::int64_t k = 0; k < std::int64_t(accepted_.size()); ++k) {
+    // Mode velocities of the ambient flow: only the relative velocity E R_ij of node j enters
+    // (the rigid part Omega_inf cancels in every mode).
+    const Eigen::Matrix<double, LubricationPair::kRows, 1> e =
+        rows_[k].middleCols<3>(6) * (E * accepted_[k].centre_separation);
+    pair_force_[k].noalias() = -rows_[k].transpose() * e;
+  }
+  sum_per_body(rhs);
+}
+
+void BodyResistance::add_brownian(const RandomStream& noise, std::size_t nodes_per_body, double scale,
+                                  double* FB) {
+#pragma omp parallel for schedule(static)
+  for (std::int64_t k = 0; k < std::int64_t(accepted_.size()); ++k) {
+    const Accepted& p = accepted_[k];
+    // The draw depends only on the pair's identity: object (body_i, body_j), normals from index
+    // 16 (node_a m + node_b) + 8. The extra 8 keeps pairs (0, j) (object id j) off the normals
+    // 0..5 that body j draws for its R_0 noise from the same stream.
+    const std::uint64_t object = (std::uint64_t(p.body_i) << 32) | p.body_j;
+    const std::uint32_t base = 8u * std::uint32_t(p.node_a * nodes_per_body + p.node_b) + 4u;
+    Eigen::Matrix<double, LubricationPair::kRows, 1> beta;
+    for (int q = 0; q < LubricationPair::kRows / 2; ++q) {
+      const auto g = noise.normal2(object, base + std::uint32_t(q));
+      beta[2 * q] = g[0];
+      beta[2 * q + 1] = g[1];
+    }
+    pair_force_[k].noalias() = scale * (rows_[k].transpose() * beta);
+  }
+  sum_per_body(FB);
+}
+
+Eigen::Matrix3d BodyResistance::stresslet_sum(const Eigen::Matrix3d& E, const double* dU) const {
+  Eigen::Matrix3d S = Eigen::Matrix3d::Zero();
+  for (std::size_t k = 0; k < accepted_.size(); ++k) {
+    const Accepted& p = accepted_[k];
+    const BodyRows& B = rows_[k];
+    const Eigen::Matrix<double, LubricationPair::kRows, 1> y =
+        B.leftCols<6>() * Eigen::Map<const Vec6>(dU + 6 * std::size_t(p.body_i)) +
+        B.rightCols<6>() * Eigen::Map<const Vec6>(dU + 6 * std::size_t(p.body_j)) +
+        B.middleCols<3>(6) * (E * p.centre_separation);
+    // Hydrodynamic force of the pair on node j (f = -S^T S v, translational rows of node j).
+    const Vec3 Fj = -B.middleCols<3>(6).transpose() * y;
+    // Moment about the two body centres of the equal and opposite pair forces: -R_ij (x) F_j.
+    // Sign: sigma = -p I + 2 mu E + (1/V) sum S; two bodies approaching along the compressional
+    // axis d = (1,-1,0)/sqrt(2) are pushed apart (F_j along +d), giving S_xy > 0.
+    const Eigen::Matrix3d M = -p.centre_separation * Fj.transpose();
+    S += 0.5 * (M + M.transpose());
+  }
+  return S;
+}
+
+}  // namespace fldsim::hydro

@@ -1,0 +1,209 @@
+// Lubrication pair modes against an independent Jeffrey–Onishi (1984) two-sphere resistance
+// matrix built from the scalar functions X^A, Y^A, Y^B, X^C, Y^C (physics-reference-values
+// §2a/§2b), and against the tabulated asymptotic values of §2c.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "HydroTestSupport.hpp"
+#include "LubricationPair.hpp"
+
+using namespace fldsim;
+using namespace fldsim::hydro;
+using test::kPi;
+
+namespace {
+
+using Mat12 = Eigen::Matrix<double, 12, 12>;
+using Vec12 = Eigen::Matrix<double, 12, 1>;
+constexpr double kZeta3 = 1.2020569031595942;
+
+// Resistance scalars of two equal spheres, JO normalisation (A: 6 pi mu a, B: 4 pi mu a^2,
+// C: 8 pi mu a^3), without the isolated-sphere parts.
+struct JOScalars {
+  double XA11 = 0, XA12 = 0, YA11 = 0, YA12 = 0, YB11 = 0, YB12 = 0, XC11 = 0, XC12 = 0, YC11 = 0, YC12 = 0;
+};
+
+Eigen::Matrix3d eps_dot(const Vec3& d) {  // (eps . d)_ij = eps_ijk d_k
+  Eigen::Matrix3d m;
+  m << 0, d.z(), -d.y(), -d.z(), 0, d.x(), d.y(), -d.x(), 0;
+  return m;
+}
+
+// (F1, L1, F2, L2) = -R (U1, W1, U2, W2), d from sphere 1 to sphere 2 (Kim & Karrila 1991 ch. 11):
+//   A^ab = X^A_ab dd + Y^A_ab (I - dd),  B^ab = Y^B_ab eps.d,  C^ab = X^C_ab dd + Y^C_ab (I - dd),
+//   F_a = A^ab U_b + (B^ba)^T W_b,  L_a = B^ab U_b + C^ab W_b,
+// with, for equal spheres, A^22 = A^11, A^21 = A^12, C likewise, Y^B_22 = -Y^B_11, Y^B_21 = -Y^B_12.
+Mat12 jo_matrix(const JOScalars& s, const Vec3& d, double mu, double a) {
+  const Eigen::Matrix3d dd = d * d.transpose(), P = Eigen::Matrix3d::Identity() - dd, e = eps_dot(d);
+  const double sA = 6 * kPi * mu * a, sB = 4 * kPi * mu * a * a, sC = 8 * kPi * mu * a * a * a;
+  Eigen::Matrix3d A[2][2], B[2][2], C[2][2];
+  A[0][0] = A[1][1] = sA * (s.XA11 * dd + s.YA11 * P);
+  A[0][1] = A[1][0] = sA * (s.XA12 * dd + s.YA12 * P);
+  C[0][0] = C[1][1] = sC * (s.XC11 * dd + s.YC11 * P);
+  C[0][1] = C[1][0] = sC * (s.XC12 * dd + s.YC12 * P);
+  B[0][0] = sB * s.YB11 * e;
+  B[1][1] = -sB * s.YB11 * e;
+  B[0][1] = sB * s.YB12 * e;
+  B[1][0] = -sB * s.YB12 * e;
+  Mat12 R;
+  for (int al = 0; al < 2; ++al)
+    for (int be = 0; be < 2; ++be) {
+      R.block<3, 3>(6 * al, 6 * be) = A[al][be];
+      R.block<3, 3>(6 * al, 6 * be + 3) = B[be][al].transpose();
+      R.block<3, 3>(6 * al + 3, 6 * be) = B[al][be];
+      R.block<3, 3>(6 * al + 3, 6 * be + 3) = C[al][be];
+    }
+  return R;
+}
+
+// Singular JO terms at gap xi (reference §2b), with the xi ln(1/xi) terms of Y^B and Y^C.
+JOScalars jo_singular(double xi) {
+  const double L = std::log(1.0 / xi);
+  JOScalars s;
+  s.XA11 = 1.0 / (4 * xi) + 9.0 / 40 * L;
+  s.XA12 = -s.XA11;
+  s.YA11 = L / 6;
+  s.YA12 = -L / 6;
+  s.YB11 = -L / 4 - xi * L / 8;
+  s.YB12 = L / 4 + xi * L / 8;
+  s.YC11 = L / 5 + 47.0 / 250 * xi * L;
+  s.YC12 = L / 20 + 31.0 / 500 * xi * L;
+  // Contact values of X^C less the isolated sphere: X^C_11 -> 7 zeta(3)/8, X^C_12 -> -zeta(3)/8.
+  s.XC11 = 7 * kZeta3 / 8 - 1;
+  s.XC12 = -kZeta3 / 8;
+  return s;
+}
+
+Vec12 pair_wrench(const PairRows& S, const Vec12& v) {
+  return -(S.transpose() * (S * v));
+}
+
+struct Case {
+  double xi;
+  Vec3 d, t;  // line of centres and a unit tangent
+};
+
+std::vector<Case> cases() {
+  std::vector<Case> out;
+  const Vec3 d = Vec3(0.3, -0.5, 0.81).normalized();
+  const Vec3 t = d.cross(Vec3(1, 0, 0)).normalized();
+  for (double xi : {0.001, 0.01, 0.05}) out.push_back({xi, d, t});
+  return out;
+}
+
+constexpr double kMu = 1.0 / (6.0 * kPi);
+constexpr double kRoundOff = 1e-12;
+
+}  // namespace
+
+TEST(LubricationPair, ModesMatchJeffreyOnishiSingularTerms) {
+  LubricationOptions opt;
+  for (const Case& c : cases()) {
+    SCOPED_TRACE(c.xi);
+    const double a = 1.0, r = 2.0 + c.xi;
+    PairRows S;
+    LubricationPair::rows(a, a, r * c.d, kMu, opt, S);
+    const Mat12 R = jo_matrix(jo_singular(c.xi), c.d, kMu, a);
+    const double L = std::log(1.0 / c.xi);
+    const double sC = 8 * kPi * kMu;
+    auto check = [&](const Vec12& v, const Vec12& expected_difference, const char* mode) {
+      SCOPED_TRACE(mode);
+      const Vec12 mine = pair_wrench(S, v), jo = -R * v;
+      EXPECT_LT((mine - jo - expected_difference).norm(), kRoundOff * jo.norm()) << mine.transpose() << "\n"
+                                                                                 << jo.transpose();
+    };
+    Vec12 v;
+    // Squeeze: equal and opposite normal velocities (X^A).
+    v << c.d, Vec3::Zero(), -c.d, Vec3::Zero();
+    check(v, Vec12::Zero(), "squeeze");
+    // Sliding: sphere 1 translates tangentially (Y^A, Y^B including its xi ln(1/xi) term, which the
+    // gap-point lever arm l = r/2 = a (1 + xi/2) reproduces exactly).
+    v << c.t, Vec3::Zero(), Vec3::Zero(), Vec3::Zero();
+    check(v, Vec12::Zero(), "sliding");
+    // Co-rotation about t: forces from Y^B exact; torques (Y^C_11 + Y^C_12) = (1/4)(1 + xi) ln(1/xi)
+    // in JO, (1/4)(1 + xi/2)^2 ln(1/xi) here: the model differs by 8 pi mu a^3 (xi^2/16) ln(1/xi).
+    v << Vec3::Zero(), c.t, Vec3::Zero(), c.t;
+    Vec12 diff = Vec12::Zero();
+    diff.segment<3>(3) = diff.segment<3>(9) = -sC * c.xi * c.xi / 16 * L * c.t;
+    check(v, diff, "co-rotation");
+    // Counter-rotation about t: the pump gives the leading 3/20 ln(1/xi) of Y^C_11 - Y^C_12 but not
+    // JO's (47/250 - 31/500) xi ln(1/xi) = (63/500) xi ln(1/xi).
+    v << Vec3::Zero(), c.t, Vec3::Zero(), -c.t;
+    diff.setZero();
+    diff.segment<3>(3) = sC * 63.0 / 500 * c.xi * L * c.t;
+    diff.segment<3>(9) = -diff.segment<3>(3);
+    check(v, diff, "counter-rotation");
+    // Twist: counter-rotation about d, JO contact value zeta(3) - 1 (beyond the isolated sphere).
+    v << Vec3::Zero(), c.d, Vec3::Zero(), -c.d;
+    check(v, Vec12::Zero(), "twist");
+  }
+}
+
+TEST(LubricationPair, CoefficientsReproduceTabulatedAsymptotics) {
+  // Reference §2c "asymptotic values for unit tests" (JO units, 5 decimals) at xi = 0.001, 0.01,
+  // 0.05; the model carries only the singular terms, so add the O(1) constants of §2b (and the
+  // xi ln(1/xi) term of X^A). Tolerance 1e-5: the table's last digit.
+  const double XA11[] = {252.54985, 27.03282, 6.67347};
+  const double YA11[] = {2.14961, 1.76585, 1.49761};
+  const double YB11[] = {-1.48888, -0.91813, -0.52874};
+  const double xis[] = {0.001, 0.01, 0.05};
+  for (int k = 0; k < 3; ++k) {
+    const double xi = xis[k], L = std::log(1.0 / xi);
+    const auto c = LubricationPair::coefficients(1.0, 1.0, 2.0 + xi, kMu, LubricationOptions{});
+    EXPECT_NEAR(c.squeeze / (6 * kPi * kMu) + 0.995419 + 3.0 / 112 * xi * L, XA11[k], 1e-5);
+    EXPECT_NEAR(c.shear / (6 * kPi * kMu) + 0.998317, YA11[k], 1e-5);
+    // Torque on sphere 1 per unit sliding velocity: c_sh l; JO L_1 = -4 pi mu a^2 Y^B_11 (U x d).
+    EXPECT_NEAR(-c.shear * c.lever_i / (4 * kPi * kMu) + 0.238920, YB11[k], 1e-5);
+  }
+}
+
+TEST(LubricationPair, LammpsPumpIsAQuarterOfJeffreyOnishi) {
+  LubricationOptions jo, lmp;
+  lmp.pump = PumpForm::Lammps;
+  const auto a = LubricationPair::coefficients(1.0, 1.0, 2.01, kMu, jo);
+  const auto b = LubricationPair::coefficients(1.0, 1.0, 2.01, kMu, lmp);
+  // 8 pi mu a^3 (3/40) ln(1/xi) vs LAMMPS 8 pi mu a^3 (3/160) ln(1/xi) (reference §2d).
+  EXPECT_NEAR(b.pump / a.pump, 0.25, 1e-14);
+  EXPECT_NEAR(a.pump, 8 * kPi * kMu * 3.0 / 40 * std::log(100.0), 1e-13);
+}
+
+TEST(LubricationPair, GapFloorAndLogCutoff) {
+  LubricationOptions opt;
+  opt.delta_num = 1.0 / 64;  // exactly representable, as is 2 + 1/64
+  // Overlapping or closer than delta_num: evaluated at delta_num.
+  const auto o = LubricationPair::coefficients(1.0, 1.0, 1.99, kMu, opt);
+  const auto f = LubricationPair::coefficients(1.0, 1.0, 2.0 + 1.0 / 64, kMu, opt);
+  EXPECT_EQ(o.xi, 1.0 / 64);
+  EXPECT_EQ(o.squeeze, f.squeeze);
+  EXPECT_EQ(o.shear, f.shear);
+  // xi >= 1: log terms vanish, squeeze keeps 6 pi mu a /(4 xi).
+  const auto far = LubricationPair::coefficients(1.0, 1.0, 3.2, kMu, opt);
+  EXPECT_EQ(far.shear, 0.0);
+  EXPECT_EQ(far.pump, 0.0);
+  EXPECT_NEAR(far.squeeze, 6 * kPi * kMu / (4 * 1.2), 1e-15);
+}
+
+TEST(LubricationPair, RigidMotionsAreAnnihilatedAndRadiiSymmetric) {
+  LubricationOptions opt;
+  for (double aj : {1.0, 0.5, 2.0}) {
+    const double ai = 1.0;
+    const Vec3 r = Vec3(0.4, 1.2, -0.7).normalized() * (ai + aj + 0.03);
+    PairRows S;
+    LubricationPair::rows(ai, aj, r, kMu, opt, S);
+    // Rigid motion of the pair: u = V + Omega x x, w = Omega with x_i = 0, x_j = r: no mode is
+    // excited (force- and torque-free pair interaction; momentum conservation).
+    const Vec3 V(0.3, -1.1, 0.2), W(-0.7, 0.4, 0.9);
+    Vec12 v;
+    v << V, W, V + W.cross(r), W;
+    EXPECT_LT((S * v).norm(), 1e-13 * S.norm() * v.norm());
+    // Swapping the spheres (i <-> j, r -> -r) gives the same coefficients.
+    const auto c1 = LubricationPair::coefficients(ai, aj, r.norm(), kMu, opt);
+    const auto c2 = LubricationPair::coefficients(aj, ai, r.norm(), kMu, opt);
+    EXPECT_NEAR(c1.squeeze, c2.squeeze, 1e-12 * c1.squeeze);
+    EXPECT_NEAR(c1.shear, c2.shear, 1e-12 * c1.shear);
+    EXPECT_NEAR(c1.pump, c2.pump, 1e-12 * c1.pump);
+    EXPECT_GT(c1.pump, 0.0);
+    EXPECT_NEAR(c1.lever_i + c1.lever_j, r.norm(), 1e-14);
+  }
+}

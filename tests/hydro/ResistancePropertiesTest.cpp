@@ -1,0 +1,215 @@
+// Properties of the assembled body resistance on random dense configurations (brute-force pair
+// lists): SPD, exact pairwise square root, momentum conservation of the pair terms, PCG against a
+// dense solve, and the covariance of the Brownian forces.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "HydroTestSupport.hpp"
+#include "ResistanceModel.hpp"
+
+using namespace fldsim;
+using namespace fldsim::hydro;
+using namespace fldsim::hydro::test;
+
+namespace {
+
+struct Config {
+  const char* name;
+  double c;  // < 0: sphere
+  std::size_t n;
+  double box;
+};
+
+std::shared_ptr<const Shape> shape_of(const Config& s) {
+  return s.c < 0 ? sphere_shape() : dicolloid_shape(s.c);
+}
+
+ModelSettings lubrication_settings() {
+  ModelSettings s;
+  s.lubrication = true;
+  s.isotropic = IsotropicForm::Sphere;
+  s.tolerance = 1e-10;
+  return s;
+}
+
+// Dense enough for many lubricated pairs, small enough for dense eigen-solves; box edges above twice
+// the largest centre interaction range 2.5 + c, so minimum images are unique.
+const Config kSetups[] = {
+    {"spheres", -1.0, 14, 6.0}, {"dicolloid c=0.2", 0.2, 12, 6.2}, {"dicolloid c=1", 1.0, 10, 7.2}};
+
+struct Assembled {
+  System system;
+  NodePairList pairs;
+  std::unique_ptr<ResistanceModel> model;
+};
+
+Assembled assemble(const Config& setup, unsigned seed) {
+  Assembled a{System(shape_of(setup), setup.n, setup.box, physics(1.0, 1.0, 0.3)), {}, nullptr};
+  random_configuration(a.system, 0.01, seed);
+  a.model = std::make_unique<ResistanceModel>(lubrication_settings());
+  a.pairs = brute_force_pairs(a.system, a.model->pair_range(a.system));
+  HydroRequest req;
+  req.stresslets = true;
+  a.model->configure(a.system, req);
+  a.model->assemble(a.system, a.pairs);
+  return a;
+}
+
+// R_0 of the lubrication model: 6 pi mu a I, 8 pi mu a^3 I per body (a = 1).
+Eigen::MatrixXd isotropic_part(const System& s) {
+  const double mu = s.physics().viscosity;
+  Eigen::VectorXd d(6 * s.size());
+  for (std::size_t i = 0; i < s.size(); ++i)
+    d.segment<6>(6 * i) << Vec3::Constant(6 * kPi * mu), Vec3::Constant(8 * kPi * mu);
+  return d.asDiagonal();
+}
+
+}  // namespace
+
+TEST(BodyResistance, SymmetricPositiveDefiniteWithExactPairSquareRoot) {
+  for (const Config& setup : kSetups) {
+    SCOPED_TRACE(setup.name);
+    Assembled a = assemble(setup, 17);
+    const BodyResistance& lub = a.model->lubrication();
+    ASSERT_GE(lub.size(), setup.n) << "configuration not dense enough to test anything";
+    const Eigen::MatrixXd R = a.model->resistance().dense();
+    EXPECT_EQ((R - R.transpose()).norm(), 0.0);
+    const Eigen::MatrixXd Rdelta = R - isotropic_part(a.system);
+    // R_delta = sum_p B_p B_p^T with B_p the body-level pair rows transposed.
+    Eigen::MatrixXd B = Eigen::MatrixXd::Zero(R.rows(), 8 * Eigen::Index(lub.size()));
+    for (std::size_t k = 0; k < lub.size(); ++k) {
+      const auto [i, j] = lub.bodies(k);
+      B.block<6, 8>(6 * i, 8 * k) = lub.rows(k).leftCols<6>().transpose();
+      B.block<6, 8>(6 * j, 8 * k) = lub.rows(k).rightCols<6>().transpose();
+    }
+    EXPECT_LT((B * B.transpose() - Rdelta).norm(), 1e-13 * Rdelta.norm());
+    // Weyl: lambda_min(R_0 + R_delta) >= lambda_min(R_0) = min(6 pi mu a, 8 pi mu a^3) = 1 since
+    // R_delta is PSD; round-off allowance relative to the largest eigenvalue.
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(R);
+    const double lmax = eig.eigenvalues().maxCoeff();
+    EXPECT_GE(eig.eigenvalues().minCoeff(), 1.0 - 1e-12 * lmax);
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig_delta(Rdelta);
+    EXPECT_GE(eig_delta.eigenvalues().minCoeff(), -1e-12 * lmax);
+  }
+}
+
+TEST(BodyResistance, PairForcesConserveMomentum) {
+  for (const Config& setup : kSetups) {
+    SCOPED_TRACE(setup.name);
+    Assembled a = assemble(setup, 29);
+    const BodyResistance& lub = a.model->lubrication();
+    std::mt19937_64 rng(5);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    for (std::size_t k = 0; k < lub.size(); ++k) {
+      const auto [i, j] = lub.bodies(k);
+      const Vec3 R = a.system.box().minimum_image(a.system.positions()[j] - a.system.positions()[i]);
+      Eigen::Matrix<double, 12, 1> v = Eigen::Matrix<double, 12, 1>::NullaryExpr([&]() { return u(rng); });
+      const Eigen::Matrix<double, 12, 1> w = -lub.rows(k).transpose() * (lub.rows(k) * v);
+      const Vec3 Fi = w.segment<3>(0), Ti = w.segment<3>(3), Fj = w.segment<3>(6), Tj = w.segment<3>(9);
+      const double scale = w.norm() * (1.0 + R.norm());
+      // Newton's third law and zero total torque about body i's centre.
+      EXPECT_LT((Fi + Fj).norm(), 1e-13 * scale);
+      EXPECT_LT((Ti + Tj + R.cross(Fj)).norm(), 1e-13 * scale);
+      // A rigid motion of the two bodies together excites no mode.
+      const Vec3 V(u(rng), u(rng), u(rng)), W(u(rng), u(rng), u(rng));
+      v << V, W, V + W.cross(R), W;
+      EXPECT_LT((lub.rows(k) * v).norm(), 1e-13 * lub.rows(k).norm() * v.norm());
+    }
+    // The pair strain forces R_FE:E_inf sum to zero over all bodies (R_0 of a sphere has none).
+    Vec3 total = Vec3::Zero();
+    double scale = 0.0;
+    for (std::size_t i = 0; i < a.system.size(); ++i) {
+      total += Eigen::Map<const Vec3>(a.model->strain_force().data() + 6 * i);
+      scale += Eigen::Map<const Vec3>(a.model->strain_force().data() + 6 * i).norm();
+    }
+    EXPECT_GT(scale, 0.0);
+    EXPECT_LT(total.norm(), 1e-13 * scale);
+  }
+}
+
+TEST(ResistanceModel, ConjugateGradientsMatchDenseSolve) {
+  for (const Config& setup : kSetups) {
+    SCOPED_TRACE(setup.name);
+    Assembled a = assemble(setup, 41);
+    const Eigen::MatrixXd R = a.model->resistance().dense();
+    std::mt19937_64 rng(9);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    const Eigen::VectorXd F = Eigen::VectorXd::NullaryExpr(R.rows(), [&]() { return u(rng); });
+    const Eigen::VectorXd rhs =
+        F + Eigen::Map<const Eigen::VectorXd>(a.model->strain_force().data(), R.rows());
+    const Eigen::VectorXd ref = R.ldlt().solve(rhs);
+    Eigen::VectorXd dU = Eigen::VectorXd::Zero(R.rows());
+    a.model->solve(a.system, F.data(), dU.data());
+    const auto stats = a.model->last_solve();
+    EXPECT_GT(stats.iterations, 0);
+    EXPECT_LE(stats.residual, 1e-10);
+    EXPECT_EQ(stats.pairs, std::int64_t(a.model->lubrication().size()));
+    // |x - x*|/|x*| <= cond(R) * relative residual.
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(R);
+    const double cond = eig.eigenvalues().maxCoeff() / eig.eigenvalues().minCoeff();
+    EXPECT_LE((dU - ref).norm() / ref.norm(), cond * stats.residual);
+  }
+}
+
+TEST(ResistanceModel, BrownianForceCovarianceIsTwoKTOverDtTimesResistance) {
+  // Small dense system of 6 spheres: sample F_B over M independent
+  // draws (different step numbers of the noise stream) and compare the variance of projections
+  // w.F_B with 2 kT/dt w^T R w. Standard error of each variance estimate from the sample variance
+  // of (w.F)^2 over the M draws; 3 SE.
+  const Config setup{"6 spheres", -1.0, 6, 5.2};
+  Assembled a = assemble(setup, 3);
+  ASSERT_GE(a.model->lubrication().size(), 3u);
+  const Eigen::MatrixXd R = a.model->resistance().dense();
+  const Eigen::Index n = R.rows();
+  const double dt = 0.01, kT = a.system.physics().kT;
+  const int M = 20000;
+  std::vector<Eigen::VectorXd> projections;
+  for (Eigen::Index k : {0, 4, 7, 15, 22}) projections.push_back(Eigen::VectorXd::Unit(n, k));
+  std::mt19937_64 rng(12);
+  std::normal_distribution<double> g(0.0, 1.0);
+  for (int q = 0; q < 3; ++q)
+    projections.push_back(Eigen::VectorXd::NullaryExpr(n, [&]() { return g(rng); }));
+  std::vector<double> sum(projections.size(), 0.0), sum2(projections.size(), 0.0);
+  Eigen::VectorXd FB(n);
+  for (int s = 0; s < M; ++s) {
+    const RandomStream noise(2024, RandomPurpose::BodyNoise, std::uint64_t(s));
+    a.model->brownian_force(a.system, a.pairs, noise, dt, FB.data());
+    for (std::size_t p = 0; p < projections.size(); ++p) {
+      const double x = projections[p].dot(FB);
+      sum[p] += x * x;
+      sum2[p] += x * x * x * x;
+    }
+  }
+  for (std::size_t p = 0; p < projections.size(); ++p) {
+    const double mean = sum[p] / M;
+    const double se = std::sqrt((sum2[p] / M - mean * mean) / (M - 1));
+    const double expected = 2.0 * kT / dt * projections[p].dot(R * projections[p]);
+    EXPECT_NEAR(mean, expected, 3.0 * se) << "projection " << p;
+  }
+}
+
+#ifdef _OPENMP
+TEST(ResistanceModel, AssemblyNoiseAndSolveAreIndependentOfThreadCount) {
+  // Pair work runs in parallel into per-pair buffers and is summed in pair order: the result must
+  // be bitwise identical for 1 and 2 threads.
+  const int threads = omp_get_max_threads();
+  auto run = [&](int nthreads) {
+    omp_set_num_threads(nthreads);
+    Assembled a = assemble(kSetups[2], 53);
+    const RandomStream noise(7, RandomPurpose::BodyNoise, 11);
+    std::vector<double> FB(6 * a.system.size()), dU(6 * a.system.size(), 0.0);
+    a.model->brownian_force(a.system, a.pairs, noise, 1e-3, FB.data());
+    a.model->solve(a.system, FB.data(), dU.data());
+    FB.insert(FB.end(), dU.begin(), dU.end());
+    return FB;
+  };
+  const auto one = run(1), two = run(std::max(2, threads));
+  omp_set_num_threads(threads);
+  ASSERT_EQ(one.size(), two.size());
+  for (std::size_t k = 0; k < one.size(); ++k) EXPECT_EQ(one[k], two[k]) << k;
+}
+#endif
