@@ -1,0 +1,106 @@
+#include "StressObserver.hpp"
+
+#include <stdexcept>
+#include <string>
+
+#include "ObserverOutput.hpp"
+
+namespace fldsim::observers {
+
+void StressObserver::begin(const System& system, const RunInfo& run, ResultSink&) {
+  volume_ = system.box().volume();
+  viscosity_ = system.physics().viscosity;
+  shear_rate_ = system.physics().shear_rate;
+  kT_ = system.physics().kT;
+  const std::size_t expected =
+      static_cast<std::size_t>(run.total_steps / std::max<std::int64_t>(1, every()) + 1);
+  for (auto& part : series_)
+    for (auto& q : part) q.reserve(expected);
+  for (auto& s : sum_) s.setZero();
+}
+
+void StressObserver::sample(const StepView& view, ResultSink& out) {
+  if (view.stress == nullptr)
+    throw std::logic_error("stress observer: the core did not provide stress pieces");
+  volume_ = view.system.box().volume();
+  const BulkStress bulk(volume_, viscosity_, shear_rate_);
+  Eigen::Matrix3d parts[4];
+  bulk.particle_stress(*view.stress, parts);
+  for (int p = 0; p < 4; ++p) {
+    const Rheology r = BulkStress::rheology(parts[p]);
+    series_[p][0].add(r.shear);
+    series_[p][1].add(r.n1);
+    series_[p][2].add(r.n2);
+    series_[p][3].add(r.pressure);
+    sum_[p] += parts[p];
+  }
+  ++samples_;
+  const auto step = view.system.step();
+  const double t = view.system.time();
+  // Internal stress unit: 6 pi mu a = 1, a = 1, time a^2/D0, so kT/a^3 when kT = 1.
+  const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> row_major = parts[kParticleTotal];
+  out.append_sample("observables/stress/particle_stress", step, t, {3, 3}, row_major.data(),
+                    "internal (kT/a^3 for kT = 1)");
+  if (shear_rate_ != 0.0) {
+    const double eta = bulk.relative_viscosity(*view.stress);
+    out.append_sample("observables/stress/eta_r", step, t, {}, &eta, "1");
+  }
+}
+
+Eigen::Matrix3d StressObserver::mean_tensor(int part) const {
+  return samples_ ? Eigen::Matrix3d(sum_[part] / static_cast<double>(samples_)) : Eigen::Matrix3d::Zero();
+}
+
+void StressObserver::finish(const RunInfo&, ResultSink& out) {
+  const std::string r = "results/stress/";
+  if (samples_ == 0) {
+    out.write_attribute("results/stress", "skipped", "no samples after start");
+    return;
+  }
+  for (int p = 0; p < 4; ++p) {
+    if (p == kBrownian && sum_[p].isZero(0.0)) continue;  // not provided (see below)
+    const Eigen::Matrix3d m = mean_tensor(p);             // symmetric expected; written row-major
+    const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> rm = m;
+    out.write_array(r + "sigma_" + kStressPartNames[p], {3, 3}, rm.data(), "internal (kT/a^3 for kT = 1)",
+                    std::string("mean ") + kStressPartNames[p] + " stress");
+  }
+  // A part the core never provided (all samples exactly zero, e.g. no Brownian stress from the
+  // hydrodynamics) is reported as absent rather than as a measured zero.
+  bool provided[4];
+  for (int p = 0; p < 4; ++p) provided[p] = p == kParticleTotal || !sum_[p].isZero(0.0);
+  if (!provided[kBrownian])
+    out.write_attribute("results/stress", "brownian", "not provided by the hydrodynamics: not included");
+  const char* names[4] = {"eta", "N1", "N2", "Pi"};
+  const char* what[4] = {"shear stress sigma_xy", "first normal stress difference sigma_xx - sigma_yy",
+                         "second normal stress difference sigma_yy - sigma_zz",
+                         "particle pressure -tr(sigma)/3"};
+  for (int p = 0; p < 4; ++p) {
+    if (!provided[p]) continue;
+    const std::string suffix = p == kParticleTotal ? "" : std::string("_") + kStressPartNames[p];
+    const std::string part = std::string(" (") + kStressPartNames[p] + " part)";
+    for (int q = 0; q < 4; ++q) {
+      const bool needs_flow = q < 3;
+      if (needs_flow && shear_rate_ == 0.0) continue;
+      if (shear_rate_ != 0.0) {
+        // In units of mu gammadot; the full relative viscosity adds the solvent's 1.
+        const double shift = (q == 0 && p == kParticleTotal) ? 1.0 : 0.0;
+        const std::string name = (q == 0 && p == kParticleTotal) ? "eta_r" : names[q] + suffix;
+        write_blocked(out, r + name, series_[p][q], "mu*gammadot", what[q] + part,
+                      1.0 / (viscosity_ * shear_rate_), shift);
+      }
+      if (kT_ > 0.0) {
+        // sigma a^3 / kT with a = 1.
+        const std::string name = std::string(q == 0 ? "shear_stress" : names[q]) + suffix + "_kT";
+        if (q == 0 && p == kParticleTotal)
+          write_blocked(out, r + name, series_[p][q], "kT/a^3", "particle shear stress sigma_xy" + part,
+                        1.0 / kT_);
+        else
+          write_blocked(out, r + name, series_[p][q], "kT/a^3", what[q] + part, 1.0 / kT_);
+      } else if (shear_rate_ == 0.0) {
+        write_blocked(out, r + names[q] + suffix, series_[p][q], "internal", what[q] + part);
+      }
+    }
+  }
+}
+
+}  // namespace fldsim::observers

@@ -1,0 +1,30 @@
+// Observer `stress`: relative viscosity, normal stress differences and particle pressure, each
+// split into hydrodynamic, interparticle and Brownian parts (formulas in BulkStress.hpp).
+#pragma once
+
+#include "BlockAverage.hpp"
+#include "BulkStress.hpp"
+#include "fldsim/observer.hpp"
+
+namespace fldsim::observers {
+
+class StressObserver : public Observer {
+ public:
+  StressObserver() = default;
+  ObserverNeeds needs() const override { return {.stress = true, .every_step = false}; }
+  void begin(const System& system, const RunInfo& run, ResultSink& out) override;
+  void sample(const StepView& view, ResultSink& out) override;
+  void finish(const RunInfo& run, ResultSink& out) override;
+
+  // Per-sample series in internal units: [part][quantity], quantity 0..3 = shear, N1, N2, Pi.
+  const BlockAverage& series(int part, int quantity) const { return series_[part][quantity]; }
+  Eigen::Matrix3d mean_tensor(int part) const;
+
+ private:
+  double volume_ = 1.0, viscosity_ = 1.0, shear_rate_ = 0.0, kT_ = 0.0;
+  BlockAverage series_[4][4];
+  Eigen::Matrix3d sum_[4];
+  std::size_t samples_ = 0;
+};
+
+}  // namespace fldsim::observers
