@@ -23,7 +23,7 @@ demo: build
 	$(FLDSIM) run examples/quickstart.yaml -o results/quickstart.h5 --overwrite
 	@echo "== steady-state results =="
 	$(FLDSIM) summary results/quickstart.h5
-	@echo "Results: results/quickstart.h5  (plots: python3 tools/plot_run.py results/quickstart.h5 -o results/quickstart)"
+	@echo "Results: results/quickstart.h5  (plots: /usr/bin/python3 tools/plot_run.py results/quickstart.h5 -o results/quickstart)"
 
 test: build
 	@cd $(BUILD) && ctest --output-on-failure -j$(JOBS) --timeout 600 2>&1 | tee ctest.log; \

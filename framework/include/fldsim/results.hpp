@@ -31,13 +31,19 @@ class FLDSIM_VISIBLE ResultSink {
   virtual void write_int_attribute(const std::string& path, const std::string& key,
                                    const std::vector<std::int64_t>& values) {
     std::string joined;
-    for (std::size_t i = 0; i < values.size(); ++i) joined += (i ? "," : "") + std::to_string(values[i]);
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      if (i) joined += ',';
+      joined += std::to_string(values[i]);
+    }
     write_attribute(path, key, joined);
   }
   virtual void write_string_list_attribute(const std::string& path, const std::string& key,
                                            const std::vector<std::string>& values) {
     std::string joined;
-    for (std::size_t i = 0; i < values.size(); ++i) joined += (i ? "," : "") + values[i];
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      if (i) joined += ',';
+      joined += values[i];
+    }
     write_attribute(path, key, joined);
   }
 };

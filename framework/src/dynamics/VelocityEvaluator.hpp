@@ -12,6 +12,7 @@
 #include "geometry/CellNeighbourList.hpp"
 
 namespace fldsim {
+using geometry::CellNeighbourList;
 
 class VelocityEvaluator {
  public:

@@ -21,6 +21,7 @@
 #include "io/Hdf5ResultSink.hpp"
 
 namespace fldsim {
+using namespace geometry;
 namespace {
 
 Quat orientation_from_row(const std::vector<double>& row, std::size_t i) {
@@ -296,7 +297,7 @@ int run_experiment(const Experiment& ex, const PluginRegistry& registry, const R
       << (done > 0 ? std::to_string(1000.0 * loop_s / double(done)) : std::string("-")) << " ms/step, "
       << (done > 0 ? double(cg_total) / double(done) : 0.0) << " CG iterations/step, " << list.rebuilds()
       << " neighbour rebuilds); total " << format_time(wall_s) << "\n"
-      << "results: " << output << "   (fldsim summary " << output << "; python3 tools/plot_run.py " << output
+      << "results: " << output << "   (fldsim summary " << output << "; /usr/bin/python3 tools/plot_run.py " << output
       << ")\ncheckpoint: " << checkpoint_path << "\n";
   return 0;
 }

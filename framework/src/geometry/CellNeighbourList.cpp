@@ -1,0 +1,128 @@
+#include "geometry/CellNeighbourList.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <tuple>
+
+namespace fldsim::geometry {
+
+void CellNeighbourList::configure(double range, double skin) {
+  range_ = range;
+  skin_ = skin;
+  built_ = false;
+  list_.set_range(range);
+}
+
+bool CellNeighbourList::needs_rebuild(const System& s) const {
+  if (!built_ || s.node_count() != reference_nodes_ || s.box().edge() != reference_edge_) return true;
+  const auto& box = s.box();
+  const auto& x = s.node_positions();
+  double first = 0.0, second = 0.0;
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    const double d = box.minimum_image(x[k] - reference_positions_[k]).norm();
+    if (d > first) {
+      second = first;
+      first = d;
+    } else if (d > second) {
+      second = d;
+    }
+  }
+  const double L = box.edge();
+  double ds = std::abs(box.offset() - reference_offset_);
+  ds = std::min(ds, L - ds);
+  return first + second + ds > skin_;
+}
+
+bool CellNeighbourList::update(const System& s) {
+  if (needs_rebuild(s)) {
+    rebuild(s);
+    return true;
+  }
+  refresh(s);
+  return false;
+}
+
+void CellNeighbourList::add_pair(const System& s, std::size_t p, std::size_t q, const Vec3& r) {
+  const std::size_t m = s.nodes_per_body();
+  const std::size_t bp = p / m, bq = q / m;
+  if (bp < bq)
+    list_.pairs().push_back(
+        {std::uint32_t(bp), std::uint32_t(bq), std::uint16_t(p % m), std::uint16_t(q % m), r, r.norm()});
+  else
+    list_.pairs().push_back({std::uint32_t(bq), std::uint32_t(bp), std::uint16_t(q % m), std::uint16_t(p % m),
+                             Vec3(-r), r.norm()});
+}
+
+void CellNeighbourList::rebuild(const System& s) {
+  const auto& box = s.box();
+  const auto& x = s.node_positions();
+  const std::size_t n = x.size(), m = s.nodes_per_body();
+  const double cutoff = range_ + skin_;
+  auto& pairs = list_.pairs();
+  pairs.clear();
+
+  if (grid_.configure(box, cutoff)) {
+    wrapped_.resize(n);
+    cell_head_.assign(grid_.cell_count(), -1);
+    cell_next_.assign(n, -1);
+    for (std::size_t k = 0; k < n; ++k) {
+      wrapped_[k] = x[k];
+      box.wrap(wrapped_[k]);
+      const int c = grid_.cell_of(wrapped_[k]);
+      cell_next_[k] = cell_head_[c];
+      cell_head_[c] = int(k);
+    }
+    std::array<int, LeesEdwardsCellGrid::max_neighbour_cells> cells;
+    for (std::size_t p = 0; p < n; ++p) {
+      const int count = grid_.neighbour_cells(grid_.cell_of(wrapped_[p]), cells);
+      for (int c = 0; c < count; ++c)
+        for (int q = cell_head_[cells[c]]; q >= 0; q = cell_next_[q]) {
+          // Each unordered pair once: from the node of the lower body.
+          if (std::size_t(q) / m <= p / m) continue;
+          const Vec3 r = box.minimum_image(x[q] - x[p]);
+          if (r.squaredNorm() < cutoff * cutoff) add_pair(s, p, q, r);
+        }
+    }
+  } else {
+    for (std::size_t p = 0; p < n; ++p)
+      for (std::size_t q = (p / m + 1) * m; q < n; ++q) {
+        const Vec3 r = box.minimum_image(x[q] - x[p]);
+        if (r.squaredNorm() < cutoff * cutoff) add_pair(s, p, q, r);
+      }
+  }
+  std::sort(pairs.begin(), pairs.end(), [](const NodePair& u, const NodePair& v) {
+    return std::tie(u.body_i, u.node_a, u.body_j, u.node_b) <
+           std::tie(v.body_i, v.node_a, v.body_j, v.node_b);
+  });
+
+  reference_positions_.assign(x.begin(), x.end());
+  reference_offset_ = box.offset();
+  reference_edge_ = box.edge();
+  reference_nodes_ = n;
+  built_ = true;
+  ++rebuilds_;
+}
+
+void CellNeighbourList::refresh(const System& s) {
+  const auto& box = s.box();
+  const auto& x = s.node_positions();
+  const std::size_t m = s.nodes_per_body();
+  auto& pairs = list_.pairs();
+  const std::ptrdiff_t count = std::ptrdiff_t(pairs.size());
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t k = 0; k < count; ++k) {
+    NodePair& pr = pairs[k];
+    pr.r = box.minimum_image(x[pr.body_j * m + pr.node_b] - x[pr.body_i * m + pr.node_a]);
+    pr.distance = pr.r.norm();
+  }
+}
+
+double CellNeighbourList::min_gap(const System& s) const {
+  double gap = std::numeric_limits<double>::infinity();
+  for (const auto& pr : list_.pairs())
+    gap = std::min(gap, pr.distance - s.node_radius(pr.node_a) - s.node_radius(pr.node_b));
+  return gap;
+}
+
+}  // namespace fldsim::geometry

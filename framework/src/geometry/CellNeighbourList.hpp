@@ -1,0 +1,54 @@
+// Verlet list of node pairs of different bodies under Lees–Edwards boundary conditions, built
+// with a LeesEdwardsCellGrid (all pairs when fewer than 3 cells fit per side).
+//
+// Validity: a listed pair set stays complete for distances < range as long as no pair distance
+// can have shrunk by more than skin since the rebuild. A pair's separation changes by at most
+// |d_i| + |d_j| + |ds|, where d are the node displacements since the rebuild (minimum image under
+// the current box, so wrapping through a y face with its x shift is not mistaken for motion) and
+// ds is the change of the box offset (mod L; only pairs across the y faces feel it). The list is
+// rebuilt when the two largest |d| plus |ds| exceed skin.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "fldsim/neighbours.hpp"
+#include "fldsim/system.hpp"
+#include "geometry/LeesEdwardsCellGrid.hpp"
+
+namespace fldsim::geometry {
+
+class CellNeighbourList {
+ public:
+  // range: node centre distance that must be covered; skin: extra padding. Lists all node pairs
+  // of different bodies with distance < range + skin at the last rebuild.
+  void configure(double range, double skin);
+  // Call after System::update_nodes(). Rebuilds when needed (see above), otherwise refreshes r and
+  // distance of the listed pairs. Returns true if it rebuilt. No allocation when not rebuilding.
+  bool update(const System& s);
+  const NodePairList& pairs() const { return list_; }
+  std::int64_t rebuilds() const { return rebuilds_; }
+  // Smallest surface gap (distance - r_a - r_b) over listed pairs (+inf if none).
+  double min_gap(const System& s) const;
+
+ private:
+  bool needs_rebuild(const System& s) const;
+  void rebuild(const System& s);
+  void refresh(const System& s);
+  void add_pair(const System& s, std::size_t p, std::size_t q, const Vec3& r);
+
+  double range_ = 0.0, skin_ = 0.0;
+  bool built_ = false;
+  std::int64_t rebuilds_ = 0;
+  NodePairList list_;
+  // State at the last rebuild.
+  std::vector<Vec3> reference_positions_;
+  double reference_offset_ = 0.0, reference_edge_ = 0.0;
+  std::size_t reference_nodes_ = 0;
+  // Cell list scratch (reused across rebuilds).
+  LeesEdwardsCellGrid grid_;
+  std::vector<Vec3> wrapped_;
+  std::vector<int> cell_head_, cell_next_;
+};
+
+}  // namespace fldsim::geometry
