@@ -28,9 +28,10 @@ demo: build
 test: build
 	@cd $(BUILD) && ctest --output-on-failure -j$(JOBS) --timeout 600 2>&1 | tee ctest.log; \
 	  status=$${PIPESTATUS[0]}; \
-	  passed=$$(grep -cE '^ *[0-9]+/[0-9]+ Test +#[0-9]+: .* Passed' ctest.log); \
-	  failed=$$(grep -cE '^ *[0-9]+/[0-9]+ Test +#[0-9]+: .*(\*\*\*|Failed|Timeout|Not Run)' ctest.log); \
-	  echo "$$passed passed, $$failed failed"; exit $$status
+	  passed=$$(grep -cE 'Test +#[0-9]+: .* +Passed +[0-9.]+ sec$$' ctest.log); \
+	  failed=$$(grep -cE 'Test +#[0-9]+: .*\*\*\*(Failed|Timeout|Exception)' ctest.log); \
+	  skipped=$$(grep -cE 'Test +#[0-9]+: .*Not Run' ctest.log); \
+	  echo "$$passed passed, $$failed failed, $$skipped skipped"; exit $$status
 
 bench: build
 	@bash bench/run.sh $(BUILD)
