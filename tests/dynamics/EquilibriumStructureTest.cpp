@@ -25,21 +25,10 @@ double contact_neighbours(const System& s, double shell) {
   return 2.0 * double(count) / double(s.size());
 }
 
-struct Estimate {
-  double mean, se;
-};
-Estimate batch_mean(const std::vector<double>& batches) {
-  double m = 0, v = 0;
-  for (double b : batches) m += b;
-  m /= double(batches.size());
-  for (double b : batches) v += (b - m) * (b - m);
-  return {m, std::sqrt(v / double(batches.size() - 1) / double(batches.size()))};
-}
-
 const double kPhi = 0.3, kShell = 0.1;
 const std::size_t kN = 125;
 
-Estimate monte_carlo_reference() {
+MeanWithError monte_carlo_reference() {
   std::vector<double> batches;
   for (int b = 0; b < 8; ++b) {
     Physics ph;
@@ -58,10 +47,10 @@ Estimate monte_carlo_reference() {
     }
     batches.push_back(sum / samples);
   }
-  return batch_mean(batches);
+  return mean_with_error(batches);
 }
 
-Estimate brownian_run(DriftScheme drift) {
+MeanWithError brownian_run(DriftScheme drift) {
   std::vector<double> batches;
   for (int b = 0; b < 4; ++b) {
     Physics ph;
@@ -87,15 +76,16 @@ Estimate brownian_run(DriftScheme drift) {
     }
     batches.push_back(sum / samples);
   }
-  return batch_mean(batches);
+  return mean_with_error(batches);
 }
 
 TEST(EquilibriumStructure, FldWithMidpointDriftKeepsHardSphereContactShell) {
-  const Estimate mc = monte_carlo_reference();
-  const Estimate bd = brownian_run(DriftScheme::Midpoint);
-  const Estimate nodrift = brownian_run(DriftScheme::None);
+  const MeanWithError mc = monte_carlo_reference();
+  const MeanWithError bd = brownian_run(DriftScheme::Midpoint);
+  const MeanWithError nodrift = brownian_run(DriftScheme::None);
   std::cout << "neighbours with gap < " << kShell << " a: MC " << mc.mean << " +- " << mc.se << ", FLD+drift "
-            << bd.mean << " +- " << bd.se << ", FLD no drift " << nodrift.mean << " +- " << nodrift.se << "\n";
+            << bd.mean << " +- " << bd.se << ", FLD no drift " << nodrift.mean << " +- " << nodrift.se
+            << "\n";
   EXPECT_NEAR(bd.mean, mc.mean, 3.0 * std::hypot(mc.se, bd.se));
 }
 

@@ -22,7 +22,8 @@ struct Command {
 
 Command run(const std::string& args) {
   const fs::path log = fs::temp_directory_path() / ("fldsim-test-" + std::to_string(::getpid()) + ".log");
-  const std::string cmd = std::string(FLDSIM_BINARY_DIR) + "/bin/fldsim " + args + " > " + log.string() + " 2>&1";
+  const std::string cmd =
+      std::string(FLDSIM_BINARY_DIR) + "/bin/fldsim " + args + " > " + log.string() + " 2>&1";
   const int status = std::system(cmd.c_str());
   std::ifstream in(log);
   std::stringstream ss;
@@ -57,7 +58,9 @@ std::string experiment(const std::string& output, double duration, const std::st
   return y.str();
 }
 
-void write(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
+void write(const fs::path& p, const std::string& text) {
+  std::ofstream(p) << text;
+}
 
 TEST(ExperimentRun, SmallRunWritesItsResultFile) {
   const fs::path d = scratch("small");
@@ -99,7 +102,8 @@ TEST(ExperimentRun, ResumedRunIsBitIdenticalToUninterruptedRun) {
   write(d / "rest.yaml", experiment((d / "rest.h5").string(), 0.04));
   ASSERT_EQ(run("run -q " + (d / "full.yaml").string()).code, 0);
   ASSERT_EQ(run("run -q " + (d / "half.yaml").string()).code, 0);
-  const Command c = run("run -q " + (d / "rest.yaml").string() + " --resume " + (d / "half.h5.checkpoint").string());
+  const Command c =
+      run("run -q " + (d / "rest.yaml").string() + " --resume " + (d / "half.h5.checkpoint").string());
   ASSERT_EQ(c.code, 0) << c.output;
   const auto a = fldsim::read_checkpoint((d / "full.h5.checkpoint").string());
   const auto b = fldsim::read_checkpoint((d / "rest.h5.checkpoint").string());

@@ -11,21 +11,10 @@
 namespace fldsim::testing {
 namespace {
 
-struct Moments {
-  double mean = 0, se = 0;
-};
-Moments moments(const std::vector<double>& v) {
-  double m = 0, m2 = 0;
-  for (double x : v) m += x;
-  m /= double(v.size());
-  for (double x : v) m2 += (x - m) * (x - m);
-  return {m, std::sqrt(m2 / double(v.size() - 1) / double(v.size()))};
-}
-
 // Runs `steps` Euler-Maruyama steps of N free bodies; returns squared displacements and
 // director overlaps n(t).n(0).
-void run_free(const std::string& shape_name, const std::string& shape_yaml, std::size_t n, double dt, int steps,
-              std::vector<double>& sq, std::vector<double>& overlap) {
+void run_free(const std::string& shape_name, const std::string& shape_yaml, std::size_t n, double dt,
+              int steps, std::vector<double>& sq, std::vector<double>& overlap) {
   Physics ph;
   ph.kT = 1.0;
   // Bodies 4 a apart on a grid: free-draining hydrodynamics ignores pairs anyway.
@@ -55,7 +44,7 @@ TEST(FreeDiffusion, SphereMeanSquaredDisplacementIsSixDt) {
   const double dt = 0.01;
   const int steps = 50;
   run_free("sphere", "{}", 2000, dt, steps, sq, ov);
-  const auto m = moments(sq);
+  const auto m = mean_with_error(sq);
   const double expected = 6.0 * 1.0 * dt * steps;
   EXPECT_NEAR(m.mean, expected, 3.0 * m.se) << "MSD " << m.mean << " +- " << m.se;
 }
@@ -69,11 +58,11 @@ TEST(FreeDiffusion, DicolloidDirectorDecorrelatesAtTwiceRotationalDiffusivity) {
   const double dt = 0.005;
   const int steps = 60;  // t = 0.3, exp(-2 Dr t) ~ 0.82
   run_free("dicolloid", "{a: 1, b: 1, c: 1}", 2000, dt, steps, sq, ov);
-  const auto m = moments(ov);
+  const auto m = mean_with_error(ov);
   const double expected = std::exp(-2.0 * Dr * dt * steps);
   EXPECT_NEAR(m.mean, expected, 3.0 * m.se) << "<n.n0> " << m.mean << " +- " << m.se;
   // Translation of the symmetric dicolloid: resistance 2 x 6 pi mu a, so D = 1/2.
-  const auto t = moments(sq);
+  const auto t = mean_with_error(sq);
   EXPECT_NEAR(t.mean, 6.0 * 0.5 * dt * steps, 3.0 * t.se);
 }
 

@@ -22,7 +22,8 @@ TEST(Reversibility, GlancingPairInShearRecoversItsGradientOffset) {
   const double dy0 = 0.8, dz0 = 0.4, dx0 = -6.0;
   s.positions()[0] = Vec3(20.0, 20.0, 20.0);
   s.positions()[1] = Vec3(20.0 + dx0, 20.0 + dy0, 20.0 + dz0);
-  scene.finish(make<HydroModel>("hydro", "lubrication", "{tolerance: 1e-12}"), {}, HydroRequest{false, true, false});
+  scene.finish(make<HydroModel>("hydro", "lubrication", "{tolerance: 1e-12}"), {},
+               HydroRequest{false, true, false});
   RungeKutta3 rk(2);
   const double dt = 2e-3;
   double min_gap = 1e9;

@@ -4,6 +4,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <cmath>
 #include <memory>
 #include <string>
 
@@ -31,6 +32,18 @@ inline Params params(const std::string& kind, const std::string& name, const std
 template <class T>
 std::shared_ptr<T> make(const std::string& kind, const std::string& name, const std::string& yaml = "{}") {
   return registry().create<T>(kind, name, params(kind, name, yaml));
+}
+
+// Mean of independent samples (or batch means) and its standard error.
+struct MeanWithError {
+  double mean = 0, se = 0;
+};
+inline MeanWithError mean_with_error(const std::vector<double>& v) {
+  double m = 0, var = 0;
+  for (double x : v) m += x;
+  m /= double(v.size());
+  for (double x : v) var += (x - m) * (x - m);
+  return {m, std::sqrt(var / double(v.size() - 1) / double(v.size()))};
 }
 
 // A system plus what it takes to step it.

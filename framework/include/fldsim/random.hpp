@@ -12,12 +12,12 @@ namespace fldsim {
 
 // What the numbers are for; part of the key so different uses never share a stream.
 enum class RandomPurpose : std::uint32_t {
-  BodyNoise = 1,      // alpha: body-level Brownian noise (R_0 part)
-  PairNoise = 2,      // beta: node-pair Brownian noise (R_delta part)
-  MonteCarlo = 3,     // initial configuration moves
-  DriftProbe = 4,     // random finite-difference probes for the thermal drift
-  Initial = 5,        // random initial orientations etc.
-  User = 100,         // first value free for plugins
+  BodyNoise = 1,   // alpha: body-level Brownian noise (R_0 part)
+  PairNoise = 2,   // beta: node-pair Brownian noise (R_delta part)
+  MonteCarlo = 3,  // initial configuration moves
+  DriftProbe = 4,  // random finite-difference probes for the thermal drift
+  Initial = 5,     // random initial orientations etc.
+  User = 100,      // first value free for plugins
 };
 
 class Philox4x32 {
@@ -48,8 +48,17 @@ class Philox4x32 {
 class RandomStream {
  public:
   RandomStream(std::uint64_t seed, RandomPurpose purpose, std::uint64_t step, std::uint32_t stage = 0)
-      : key_{std::uint32_t(seed), std::uint32_t(seed >> 32) ^ (std::uint32_t(purpose) * 0x85EBCA6Bu) ^ stage},
-        step_(step), purpose_(std::uint32_t(purpose)), stage_(stage) {}
+      : seed_(seed),
+        key_{std::uint32_t(seed), std::uint32_t(seed >> 32) ^ (std::uint32_t(purpose) * 0x85EBCA6Bu) ^ stage},
+        step_(step),
+        purpose_(std::uint32_t(purpose)),
+        stage_(stage) {}
+
+  // The stream of the same seed, step and stage for another purpose (e.g. the node-pair noise
+  // that goes with a body-noise stream), so the two never share numbers.
+  RandomStream for_purpose(RandomPurpose purpose) const {
+    return RandomStream(seed_, purpose, step_, stage_);
+  }
 
   // Four uniform 32-bit words for (object, block).
   Philox4x32::Counter bits(std::uint64_t object, std::uint32_t block) const {
@@ -91,6 +100,7 @@ class RandomStream {
   }
 
  private:
+  std::uint64_t seed_;
   Philox4x32::Key key_;
   std::uint64_t step_;
   std::uint32_t purpose_;

@@ -240,34 +240,33 @@ void Hdf5ResultSink::on_object(const std::string& path, Fn&& fn) {
   fn(g);
 }
 
-void Hdf5ResultSink::write_attribute(const std::string& path, const std::string& key,
-                                     const std::string& value) {
-  check_open("write_attribute");
+template <class Fn>
+void Hdf5ResultSink::set_attribute(const char* what, const std::string& path, const std::string& key,
+                                   Fn&& fn) {
+  check_open(what);
   try {
-    on_object(path, [&](H5::H5Object& o) { io::set_string_attribute(o, key, value); });
+    on_object(path, fn);
   } catch (const H5::Exception& e) {
     io::fail(part_path_, "cannot write attribute " + key + " of " + path, e);
   }
+}
+
+void Hdf5ResultSink::write_attribute(const std::string& path, const std::string& key,
+                                     const std::string& value) {
+  set_attribute("write_attribute", path, key,
+                [&](H5::H5Object& o) { io::set_string_attribute(o, key, value); });
 }
 
 void Hdf5ResultSink::write_int_attribute(const std::string& path, const std::string& key,
                                          const std::vector<std::int64_t>& values) {
-  check_open("write_int_attribute");
-  try {
-    on_object(path, [&](H5::H5Object& o) { io::set_int_attribute(o, key, values); });
-  } catch (const H5::Exception& e) {
-    io::fail(part_path_, "cannot write attribute " + key + " of " + path, e);
-  }
+  set_attribute("write_int_attribute", path, key,
+                [&](H5::H5Object& o) { io::set_int_attribute(o, key, values); });
 }
 
 void Hdf5ResultSink::write_string_list_attribute(const std::string& path, const std::string& key,
                                                  const std::vector<std::string>& values) {
-  check_open("write_string_list_attribute");
-  try {
-    on_object(path, [&](H5::H5Object& o) { io::set_string_list_attribute(o, key, values); });
-  } catch (const H5::Exception& e) {
-    io::fail(part_path_, "cannot write attribute " + key + " of " + path, e);
-  }
+  set_attribute("write_string_list_attribute", path, key,
+                [&](H5::H5Object& o) { io::set_string_list_attribute(o, key, values); });
 }
 
 void Hdf5ResultSink::flush() {

@@ -72,6 +72,9 @@ class FLDSIM_VISIBLE Hdf5ResultSink : public ResultSink {
   // Apply `fn` to the group or dataset at `path` (a group is created if nothing is there).
   template <class Fn>
   void on_object(const std::string& path, Fn&& fn);
+  // Apply `fn` to the group or dataset at `path`, turning HDF5 failures into fldsim::Error.
+  template <class Fn>
+  void set_attribute(const char* what, const std::string& path, const std::string& key, Fn&& fn);
 
   std::string path_;
   std::string part_path_;

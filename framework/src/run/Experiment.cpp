@@ -11,12 +11,15 @@
 namespace fldsim {
 namespace {
 
-const std::vector<std::string> kTopKeys = {"system", "flow", "hydro", "forces", "run", "observers", "output", "plugins"};
+const std::vector<std::string> kTopKeys = {"system", "flow",      "hydro",  "forces",
+                                           "run",    "observers", "output", "plugins"};
 
 ParamSchema system_schema() {
   ParamSchema s;
   s.integer("count", std::nullopt, "", "number of bodies N").at_least(1);
-  s.number("volume_fraction", std::nullopt, "", "true volume fraction phi = N V_body / V_box").greater(0.0).less(0.74);
+  s.number("volume_fraction", std::nullopt, "", "true volume fraction phi = N V_body / V_box")
+      .greater(0.0)
+      .less(0.74);
   s.number("box_edge", 0.0, "a", "cubic box edge; 0 = from count and volume_fraction").at_least(0.0);
   return s;
 }
@@ -52,19 +55,20 @@ ParamSchema run_schema() {
   s.integer("seed", 42, "", "seed of the Brownian noise (counter-based: same seed, same run)").at_least(0);
   s.choice("integrator", "auto", {"auto", "euler_maruyama", "rk3"},
            "auto = Euler-Maruyama for Brownian runs, third-order Runge-Kutta for kT = 0");
-  s.choice("drift", "midpoint", {"midpoint", "none"},
-           "thermal drift kT div M: midpoint step with frozen noise, or none (wrong equilibrium; for comparison)");
+  s.choice(
+      "drift", "midpoint", {"midpoint", "none"},
+      "thermal drift kT div M: midpoint step with frozen noise, or none (wrong equilibrium; for comparison)");
   s.number("skin", 0.3, "a", "neighbour-list skin: the list is rebuilt when a node moved more than skin/2")
       .greater(0.0);
-  s.number("checkpoint_every", 0.0, "time_unit", "write a checkpoint this often (0 = only at the end)").at_least(0.0);
+  s.number("checkpoint_every", 0.0, "time_unit", "write a checkpoint this often (0 = only at the end)")
+      .at_least(0.0);
   s.integer("threads", 0, "", "OpenMP threads; 0 = OMP_NUM_THREADS or all cores").at_least(0);
   return s;
 }
 
 void apply_override(YAML::Node root, const std::string& item) {
   const auto eq = item.find('=');
-  if (eq == std::string::npos || eq == 0)
-    throw ConfigError("--set " + item + ": expected dotted.key=value");
+  if (eq == std::string::npos || eq == 0) throw ConfigError("--set " + item + ": expected dotted.key=value");
   const std::string path = item.substr(0, eq);
   YAML::Node value;
   try {
@@ -215,37 +219,33 @@ Experiment read_experiment(const std::string& file, const std::vector<std::strin
   else
     read_plugin_block(hydro, "hydro", "hydro", *registry, errors, ex.hydro);
 
-  if (const YAML::Node forces = root["forces"]) {
-    if (!forces.IsSequence()) {
-      errors.add(forces, "forces", "expected a list of {plugin: ...} maps");
-    } else {
-      for (std::size_t i = 0; i < forces.size(); ++i) {
-        PluginBlock b;
-        if (read_plugin_block(forces[i], "force", "forces[" + std::to_string(i) + "]", *registry, errors, b))
-          ex.forces.push_back(std::move(b));
-      }
+  // `forces:` and `observers:` are lists of plugin blocks, each validated against its plugin.
+  auto read_list = [&](const char* key, const char* kind, const ParamSchema* core_keys) {
+    std::vector<PluginBlock> blocks;
+    const YAML::Node list = root[key];
+    if (!list) return blocks;
+    if (!list.IsSequence()) {
+      errors.add(list, key, "expected a list of {plugin: ...} maps");
+      return blocks;
     }
-  }
-
-  if (const YAML::Node obs = root["observers"]) {
-    if (!obs.IsSequence()) {
-      errors.add(obs, "observers", "expected a list of {plugin: ...} maps");
-    } else {
-      ParamSchema schedule;
-      schedule.integer("every", 1, "steps", "sample every this many steps").at_least(1);
-      schedule.number("start", 0.0, "time_unit", "sample only from this time on").at_least(0.0);
-      for (std::size_t i = 0; i < obs.size(); ++i) {
-        ObserverBlock b;
-        if (read_plugin_block(obs[i], "observer", "observers[" + std::to_string(i) + "]", *registry, errors,
-                              b.plugin, &schedule) &&
-            b.plugin.params.has("every")) {
-          b.every = b.plugin.params.integer("every");
-          b.start = b.plugin.params.number("start");
-          ex.observers.push_back(std::move(b));
-        }
-      }
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      PluginBlock b;
+      if (read_plugin_block(list[i], kind, std::string(key) + "[" + std::to_string(i) + "]", *registry,
+                            errors, b, core_keys))
+        blocks.push_back(std::move(b));
     }
-  }
+    return blocks;
+  };
+  ex.forces = read_list("forces", "force", nullptr);
+  ParamSchema schedule;
+  schedule.integer("every", 1, "steps", "sample every this many steps").at_least(1);
+  schedule.number("start", 0.0, "time_unit", "sample only from this time on").at_least(0.0);
+  for (auto& b : read_list("observers", "observer", &schedule))
+    if (b.params.has("every")) {
+      const std::int64_t every = b.params.integer("every");
+      const double start = b.params.number("start");
+      ex.observers.push_back(ObserverBlock{std::move(b), every, start});
+    }
 
   const YAML::Node run = section("run", true);
   const Params rp = validate_params(run, run_schema(), "run", errors);
@@ -263,7 +263,8 @@ Experiment read_experiment(const std::string& file, const std::vector<std::strin
   if (ex.dt > 0 && ex.duration > 0 && ex.dt > ex.duration)
     errors.add(run["dt"], "run.dt", "expected a time step no longer than run.duration");
   if (ex.brownian && ex.integrator == "rk3")
-    errors.add(run["integrator"], "run.integrator", "rk3 is deterministic; use euler_maruyama for a Brownian run");
+    errors.add(run["integrator"], "run.integrator",
+               "rk3 is deterministic; use euler_maruyama for a Brownian run");
   if (!ex.brownian && root["flow"] && root["flow"]["peclet"] && ex.peclet == 0.0)
     errors.add(root["flow"]["peclet"], "flow.peclet",
                "a non-Brownian run (brownian: false) needs shear; remove peclet or set it > 0");

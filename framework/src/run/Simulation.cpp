@@ -44,18 +44,19 @@ void initialise(System& sys, const Experiment& ex, std::ostream& log) {
     std::vector<Quat> q;
     for (std::size_t i = 0; i < sys.size(); ++i) {
       const auto& p = ex.init_positions[i];
-      if (p.size() != 3) throw Error(ex.file + ": system.init.positions[" + std::to_string(i) + "]: expected [x, y, z]");
+      if (p.size() != 3)
+        throw Error(ex.file + ": system.init.positions[" + std::to_string(i) + "]: expected [x, y, z]");
       x.emplace_back(p[0], p[1], p[2]);
       q.push_back(i < ex.init_orientations.size() ? orientation_from_row(ex.init_orientations[i], i)
-                                                   : Quat::Identity());
+                                                  : Quat::Identity());
     }
     place_explicit(sys, x, q);
     log << "start: " << sys.size() << " bodies placed as listed in the experiment\n";
   } else if (ex.init_method == "file") {
     const Checkpoint c = read_last_frame(ex.init_file);
     if (c.positions.size() != sys.size())
-      throw Error(ex.init_file + ": has " + std::to_string(c.positions.size()) + " bodies, the experiment asks for " +
-                  std::to_string(sys.size()));
+      throw Error(ex.init_file + ": has " + std::to_string(c.positions.size()) +
+                  " bodies, the experiment asks for " + std::to_string(sys.size()));
     sys.positions() = c.positions;
     sys.orientations() = c.orientations;
     sys.box().set_strain(c.strain);
@@ -66,11 +67,13 @@ void initialise(System& sys, const Experiment& ex, std::ostream& log) {
     opt.seed = std::uint64_t(ex.init_seed);
     opt.sweeps = ex.init_sweeps;
     const auto t0 = std::chrono::steady_clock::now();
-    const MonteCarloReport r = initialise_monte_carlo(sys, opt, [&](const std::string& m) { log << "  mc: " << m << "\n"; });
+    const MonteCarloReport r =
+        initialise_monte_carlo(sys, opt, [&](const std::string& m) { log << "  mc: " << m << "\n"; });
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    log << "start: hard-body Monte Carlo, " << r.sweeps << " sweeps in " << std::fixed << std::setprecision(1) << secs
-        << " s (acceptance " << std::setprecision(2) << r.acceptance_translation << " / " << r.acceptance_rotation
-        << "), phi = " << std::setprecision(4) << r.final_volume_fraction << ", overlaps " << r.overlaps << "\n"
+    log << "start: hard-body Monte Carlo, " << r.sweeps << " sweeps in " << std::fixed << std::setprecision(1)
+        << secs << " s (acceptance " << std::setprecision(2) << r.acceptance_translation << " / "
+        << r.acceptance_rotation << "), phi = " << std::setprecision(4) << r.final_volume_fraction
+        << ", overlaps " << r.overlaps << "\n"
         << std::defaultfloat;
     if (r.overlaps != 0) throw Error("Monte Carlo start left " + std::to_string(r.overlaps) + " overlaps");
   }
@@ -84,8 +87,8 @@ std::string format_time(double seconds) {
 
 }  // namespace
 
-int run_experiment(const Experiment& ex, const PluginRegistry& registry, const RunOptions& opt, std::ostream& log) {
-  namespace fs = std::filesystem;
+int run_experiment(const Experiment& ex, const PluginRegistry& registry, const RunOptions& opt,
+                   std::ostream& log) {
   const auto wall0 = std::chrono::steady_clock::now();
 #ifdef _OPENMP
   if (ex.threads > 0) omp_set_num_threads(int(ex.threads));
@@ -95,8 +98,8 @@ int run_experiment(const Experiment& ex, const PluginRegistry& registry, const R
 #endif
   const std::string output = !opt.output.empty() ? opt.output : ex.output;
   if (output.empty()) throw ConfigError(ex.file + ": output: no result file named (set `output:` or use -o)");
-  if (fs::exists(output) && !opt.overwrite)
-    throw Error(output + " exists; refusing to overwrite it (use --overwrite or another -o)");
+  // Opened first: it refuses an existing file before any Monte Carlo work is spent.
+  Hdf5ResultSink sink(output, opt.overwrite);
 
   auto shape = registry.create<Shape>("shape", ex.shape.name, ex.shape.params);
 
@@ -130,8 +133,11 @@ int run_experiment(const Experiment& ex, const PluginRegistry& registry, const R
   System sys(shape, std::size_t(ex.count), edge, ph);
   log << "fldsim: " << ex.file << "\n"
       << "system: " << ex.count << " x " << ex.shape.name << " (" << shape->nodes().size()
-      << " nodes, volume " << v_body << " a^3), phi = " << ph.volume_fraction << ", box edge " << edge << " a\n"
-      << "flow: " << (ex.brownian ? "Pe = " + std::to_string(ex.peclet) : std::string("non-Brownian (kT = 0), gammadot = 1"))
+      << " nodes, volume " << v_body << " a^3), phi = " << ph.volume_fraction << ", box edge " << edge
+      << " a\n"
+      << "flow: "
+      << (ex.brownian ? "Pe = " + std::to_string(ex.peclet)
+                      : std::string("non-Brownian (kT = 0), gammadot = 1"))
       << "; times in " << unit_name << "\n";
 
   auto hydro = registry.create<HydroModel>("hydro", ex.hydro.name, ex.hydro.params);
@@ -150,8 +156,8 @@ int run_experiment(const Experiment& ex, const PluginRegistry& registry, const R
   if (!opt.resume.empty()) {
     resume = read_checkpoint(opt.resume);
     if (resume.positions.size() != sys.size())
-      throw Error(opt.resume + ": checkpoint has " + std::to_string(resume.positions.size()) + " bodies, experiment " +
-                  std::to_string(sys.size()));
+      throw Error(opt.resume + ": checkpoint has " + std::to_string(resume.positions.size()) +
+                  " bodies, experiment " + std::to_string(sys.size()));
     if (resume.experiment_yaml != ex.resolved_yaml)
       log << "warning: " << opt.resume << " was written by a different experiment file; resuming anyway\n";
     sys.positions() = resume.positions;
@@ -186,9 +192,9 @@ int run_experiment(const Experiment& ex, const PluginRegistry& registry, const R
   if (use_rk3)
     integrator = std::make_unique<RungeKutta3>(sys.size());
   else
-    integrator = std::make_unique<EulerMaruyama>(std::uint64_t(ex.seed), request.brownian,
-                                                 ex.drift == "none" ? DriftScheme::None : DriftScheme::Midpoint,
-                                                 sys.size());
+    integrator = std::make_unique<EulerMaruyama>(
+        std::uint64_t(ex.seed), request.brownian,
+        ex.drift == "none" ? DriftScheme::None : DriftScheme::Midpoint, sys.size());
   VelocityEvaluator evaluator(hydro, forces, list, sys.size());
   if (!opt.resume.empty() && resume.warm_start.size() == evaluator.warm_start().size())
     evaluator.warm_start() = resume.warm_start;
@@ -198,8 +204,8 @@ int run_experiment(const Experiment& ex, const PluginRegistry& registry, const R
   const std::int64_t checkpoint_steps =
       ex.checkpoint_every > 0 ? std::max<std::int64_t>(1, std::llround(ex.checkpoint_every / ex.dt)) : 0;
   log << "hydro: " << ex.hydro.name << "; integrator: " << integrator->describe() << "; dt = " << ex.dt << " "
-      << unit_name << ", " << total_steps << " steps; pair range " << range << " a + skin " << ex.skin << " a; "
-      << threads << " thread(s)\n";
+      << unit_name << ", " << total_steps << " steps; pair range " << range << " a + skin " << ex.skin
+      << " a; " << threads << " thread(s)\n";
   for (const auto& s : skipped) log << "skipped: " << s << "\n";
 
   RunInfo info;
@@ -210,7 +216,6 @@ int run_experiment(const Experiment& ex, const PluginRegistry& registry, const R
   info.output_path = output;
   info.seed = std::uint64_t(ex.seed);
 
-  Hdf5ResultSink sink(output, opt.overwrite);
   {
     std::vector<std::array<std::string, 4>> table;
     auto add = [&](const std::string& kind, const std::string& name) {
@@ -221,14 +226,15 @@ int run_experiment(const Experiment& ex, const PluginRegistry& registry, const R
     add("hydro", ex.hydro.name);
     for (const auto& f : ex.forces) add("force", f.name);
     for (const auto& o : ex.observers) add("observer", o.plugin.name);
-    std::map<std::string, std::string> extra{{"time_unit", unit_name},
-                                             {"units", "lengths a (node radius), energies kT, time a^2/D0 internally"},
-                                             {"peclet", std::to_string(ex.peclet)},
-                                             {"volume_fraction", std::to_string(ph.volume_fraction)},
-                                             {"shape", ex.shape.name},
-                                             {"brownian", ex.brownian ? "true" : "false"},
-                                             {"integrator", integrator->describe()},
-                                             {"experiment_file", ex.file}};
+    std::map<std::string, std::string> extra{
+        {"time_unit", unit_name},
+        {"units", "lengths a (node radius), energies kT, time a^2/D0 internally"},
+        {"peclet", std::to_string(ex.peclet)},
+        {"volume_fraction", std::to_string(ph.volume_fraction)},
+        {"shape", ex.shape.name},
+        {"brownian", ex.brownian ? "true" : "false"},
+        {"integrator", integrator->describe()},
+        {"experiment_file", ex.file}};
     if (ex.shape.params.has("c")) extra["shape_c"] = std::to_string(ex.shape.params.number("c"));
     sink.write_parameters(ex.resolved_yaml, table, std::uint64_t(ex.seed), extra);
   }
@@ -276,11 +282,12 @@ int run_experiment(const Experiment& ex, const PluginRegistry& registry, const R
                     std::to_string(list.min_gap(sys)) + " a)");
     if (any_due) {
       if (stress_due) {
-        stress.hydrodynamic = hydro->stresslet_sum(sys, evaluator.pairs(), integrator->step_relative_velocity());
+        stress.hydrodynamic =
+            hydro->stresslet_sum(sys, evaluator.pairs(), integrator->step_relative_velocity());
         stress.interparticle = -evaluator.virial();
       }
-      StepView view{sys, evaluator.pairs(), info, U, evaluator.force(), stress_due ? &stress : nullptr, st,
-                    list.min_gap(sys)};
+      StepView view{sys, evaluator.pairs(), info, U, evaluator.force(), stress_due ? &stress : nullptr,
+                    st,  list.min_gap(sys)};
       for (auto& o : observers)
         if (o->needs().every_step || o->due(sys.step(), sys.time())) o->sample(view, sink);
     }
@@ -297,8 +304,8 @@ int run_experiment(const Experiment& ex, const PluginRegistry& registry, const R
       << (done > 0 ? std::to_string(1000.0 * loop_s / double(done)) : std::string("-")) << " ms/step, "
       << (done > 0 ? double(cg_total) / double(done) : 0.0) << " CG iterations/step, " << list.rebuilds()
       << " neighbour rebuilds); total " << format_time(wall_s) << "\n"
-      << "results: " << output << "   (fldsim summary " << output << "; /usr/bin/python3 tools/plot_run.py " << output
-      << ")\ncheckpoint: " << checkpoint_path << "\n";
+      << "results: " << output << "   (fldsim summary " << output << "; /usr/bin/python3 tools/plot_run.py "
+      << output << ")\ncheckpoint: " << checkpoint_path << "\n";
   return 0;
 }
 

@@ -105,10 +105,9 @@ void BodyResistance::add_brownian(const RandomStream& noise, std::size_t nodes_p
   for (std::int64_t k = 0; k < std::int64_t(accepted_.size()); ++k) {
     const Accepted& p = accepted_[k];
     // The draw depends only on the pair's identity: object (body_i, body_j), normals from index
-    // 16 (node_a m + node_b) + 8. The extra 8 keeps pairs (0, j) (object id j) off the normals
-    // 0..5 that body j draws for its R_0 noise from the same stream.
+    // 16 (node_a m + node_b), in the pair-noise stream (separate from the bodies' R_0 noise).
     const std::uint64_t object = (std::uint64_t(p.body_i) << 32) | p.body_j;
-    const std::uint32_t base = 8u * std::uint32_t(p.node_a * nodes_per_body + p.node_b) + 4u;
+    const std::uint32_t base = 8u * std::uint32_t(p.node_a * nodes_per_body + p.node_b);
     Eigen::Matrix<double, LubricationPair::kRows, 1> beta;
     for (int q = 0; q < LubricationPair::kRows / 2; ++q) {
       const auto g = noise.normal2(object, base + std::uint32_t(q));

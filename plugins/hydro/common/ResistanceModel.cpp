@@ -110,7 +110,8 @@ void ResistanceModel::brownian_force(const System& system, const NodePairList& p
     const Vec6 f = iso_.factor(std::size_t(i)).matrixL() * alpha;
     Eigen::Map<Vec6>(FB + 6 * i) = scale * f;
   }
-  if (settings_.lubrication) lub_.add_brownian(noise, system.nodes_per_body(), scale, FB);
+  if (settings_.lubrication)
+    lub_.add_brownian(noise.for_purpose(RandomPurpose::PairNoise), system.nodes_per_body(), scale, FB);
 }
 
 void ResistanceModel::solve(const System& system, const double* F, double* dU) {
