@@ -1,9 +1,12 @@
 // The fldsim command line: run, check, plugins, summary. Exit codes: 0 success, 1 run-time
 // failure, 2 bad input (experiment file, command line).
+#include <unistd.h>
+
+#include <cstdlib>
 #include <iostream>
 #include <sstream>
-#include <variant>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "fldsim/error.hpp"
@@ -77,7 +80,9 @@ std::string format_default(const fldsim::ParamValue& v) {
   return out.str();
 }
 
-bool is_help(const std::string& a) { return a == "-h" || a == "--help"; }
+bool is_help(const std::string& a) {
+  return a == "-h" || a == "--help";
+}
 
 int usage_error(const std::string& message, const char* help) {
   std::cerr << "fldsim: " << message << "\n\n" << help;
@@ -121,8 +126,8 @@ int cmd_run(const std::vector<std::string>& args, bool check_only) {
   std::unique_ptr<fldsim::PluginRegistry> registry;
   const fldsim::Experiment ex = fldsim::read_experiment(file, overrides, registry);
   if (check_only) {
-    std::cout << file << ": valid (" << ex.count << " x " << ex.shape.name << ", hydro " << ex.hydro.name << ", "
-              << ex.forces.size() << " force(s), " << ex.observers.size() << " observer(s))\n";
+    std::cout << file << ": valid (" << ex.count << " x " << ex.shape.name << ", hydro " << ex.hydro.name
+              << ", " << ex.forces.size() << " force(s), " << ex.observers.size() << " observer(s))\n";
     return 0;
   }
   std::ostream null_stream(nullptr);
@@ -146,12 +151,14 @@ int cmd_plugins(const std::vector<std::string>& args) {
   for (const auto& d : registry.directories()) std::cout << " " << d;
   std::cout << "\n";
   for (const auto& p : registry.plugins()) {
-    std::cout << "\n" << p.kind << " " << p.name << " " << p.version << "  — " << p.summary << "\n  file: " << p.file
+    std::cout << "\n"
+              << p.kind << " " << p.name << " " << p.version << "  — " << p.summary << "\n  file: " << p.file
               << "\n";
     for (const auto& s : p.schema.specs()) {
       std::cout << "  " << s.name << ": " << s.expectation();
       if (!s.unit.empty()) std::cout << " [" << s.unit << "]";
-      std::cout << (s.default_value ? ", default " + format_default(*s.default_value) : std::string(" (required)"))
+      std::cout << (s.default_value ? ", default " + format_default(*s.default_value)
+                                    : std::string(" (required)"))
                 << " — " << s.help << "\n";
     }
   }
@@ -170,7 +177,19 @@ int cmd_summary(const std::vector<std::string>& args) {
 
 }  // namespace
 
+// libgomp reads its wait policy when it is loaded, before main, so `run` sets it by executing
+// itself once more. By default a thread spins ~300000 times at every barrier before it sleeps;
+// on a shared machine that spinning holds a core another thread of the same run needs, and a
+// step can take a hundred times longer. GOMP_SPINCOUNT = 10000 (~10 us) keeps back-to-back
+// parallel regions fast and yields soon after. Users who set a policy themselves are left alone.
+void set_openmp_wait_policy(char** argv) {
+  if (std::getenv("OMP_WAIT_POLICY") || std::getenv("GOMP_SPINCOUNT")) return;
+  setenv("GOMP_SPINCOUNT", "10000", 1);
+  execv("/proc/self/exe", argv);  // returns only on failure: run on with the default policy
+}
+
 int main(int argc, char** argv) {
+  if (argc > 1 && std::string(argv[1]) == "run") set_openmp_wait_policy(argv);
   std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty()) {
     std::cerr << kUsage;

@@ -1,7 +1,7 @@
 // End-to-end through the command line: a small experiment runs and writes its result file; bad
 // input gives the documented one-line error and exit code 2; an existing result is never
 // overwritten; a run resumed from its checkpoint reproduces the uninterrupted run bit for bit
-// (counter-based noise keyed by step, warm start saved).
+// (counter-based noise keyed by step, warm start and observer accumulators saved).
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -37,7 +37,8 @@ fs::path scratch(const std::string& name) {
   return d;
 }
 
-std::string experiment(const std::string& output, double duration, const std::string& hydro = "fld") {
+std::string experiment(const std::string& output, double duration, const std::string& hydro = "fld",
+                       const std::string& extra = "") {
   std::ostringstream y;
   y << "system:\n"
        "  shape: {plugin: dicolloid, c: 0.2}\n"
@@ -54,7 +55,8 @@ std::string experiment(const std::string& output, double duration, const std::st
     << duration
     << ", seed: 9}\n"
        "output: "
-    << output << "\n";
+    << output << "\n"
+    << extra;
   return y.str();
 }
 
@@ -97,9 +99,11 @@ TEST(ExperimentRun, ExistingResultIsNotOverwritten) {
 
 TEST(ExperimentRun, ResumedRunIsBitIdenticalToUninterruptedRun) {
   const fs::path d = scratch("resume");
-  write(d / "full.yaml", experiment((d / "full.h5").string(), 0.04));
-  write(d / "half.yaml", experiment((d / "half.h5").string(), 0.02));
-  write(d / "rest.yaml", experiment((d / "rest.h5").string(), 0.04));
+  // The orientation observer's accumulated state must survive the restart too.
+  const std::string observers = "observers:\n  - {plugin: orientation, every: 5}\n";
+  write(d / "full.yaml", experiment((d / "full.h5").string(), 0.04, "fld", observers));
+  write(d / "half.yaml", experiment((d / "half.h5").string(), 0.02, "fld", observers));
+  write(d / "rest.yaml", experiment((d / "rest.h5").string(), 0.04, "fld", observers));
   ASSERT_EQ(run("run -q " + (d / "full.yaml").string()).code, 0);
   ASSERT_EQ(run("run -q " + (d / "half.yaml").string()).code, 0);
   const Command c =
@@ -113,6 +117,10 @@ TEST(ExperimentRun, ResumedRunIsBitIdenticalToUninterruptedRun) {
     EXPECT_EQ(a.positions[i], b.positions[i]) << "body " << i;
     EXPECT_EQ(a.orientations[i].coeffs(), b.orientations[i].coeffs()) << "body " << i;
   }
+  const std::string key = "observers[0].orientation";
+  ASSERT_TRUE(a.blobs.count(key) && b.blobs.count(key));
+  EXPECT_FALSE(a.blobs.at(key).empty());
+  EXPECT_EQ(a.blobs.at(key), b.blobs.at(key));  // 8 samples each, the last 4 after the restart
 }
 
 }  // namespace

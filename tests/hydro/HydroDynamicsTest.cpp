@@ -158,13 +158,13 @@ TEST(FreeDraining, DicolloidJefferyOrbitPeriod) {
   std::printf("Jeffery period: %.6f, expected %.6f\n", period, expected);
 }
 
-TEST(FldModel, IsolatedSphereMobilityFollowsThePhiFit) {
+TEST(FldModel, IsolatedSphereMobilityFollowsKumarHigdonFit) {
   // R_0 = 6 pi mu a (1 + 2.725 phi - 6.583 phi^2), RT0 = 8 pi mu a^3 (1 + 0.749 phi - 2.469 phi^2);
   // at phi = 0.3 the factors are 1.2250 and 1.0025 (reference §1a, 4 decimals). An isolated sphere
   // (no pairs) under a unit force and torque moves with 1/R_0 and 1/RT0.
   System s(sphere_shape(), 1, 30.0, physics(0.0, 0.0, 0.3));
   ModelSettings settings;
-  settings.phi_fit = true;
+  settings.fit = IsotropicFit::KumarHigdon;
   ResistanceModel model(settings);
   model.configure(s, deterministic(false, false));
   model.assemble(s, NodePairList{});

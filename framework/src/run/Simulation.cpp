@@ -19,6 +19,7 @@
 #include "io/Checkpoint.hpp"
 #include "io/FrameReader.hpp"
 #include "io/Hdf5ResultSink.hpp"
+#include "run/ThreadPlan.hpp"
 
 namespace fldsim {
 using namespace geometry;
@@ -90,11 +91,9 @@ std::string format_time(double seconds) {
 int run_experiment(const Experiment& ex, const PluginRegistry& registry, const RunOptions& opt,
                    std::ostream& log) {
   const auto wall0 = std::chrono::steady_clock::now();
+  const ThreadPlan threads = plan_threads(ex.threads, std::size_t(ex.count));
 #ifdef _OPENMP
-  if (ex.threads > 0) omp_set_num_threads(int(ex.threads));
-  const int threads = omp_get_max_threads();
-#else
-  const int threads = 1;
+  omp_set_num_threads(threads.threads);
 #endif
   const std::string output = !opt.output.empty() ? opt.output : ex.output;
   if (output.empty()) throw ConfigError(ex.file + ": output: no result file named (set `output:` or use -o)");
@@ -205,7 +204,9 @@ int run_experiment(const Experiment& ex, const PluginRegistry& registry, const R
       ex.checkpoint_every > 0 ? std::max<std::int64_t>(1, std::llround(ex.checkpoint_every / ex.dt)) : 0;
   log << "hydro: " << ex.hydro.name << "; integrator: " << integrator->describe() << "; dt = " << ex.dt << " "
       << unit_name << ", " << total_steps << " steps; pair range " << range << " a + skin " << ex.skin
-      << " a; " << threads << " thread(s)\n";
+      << " a\n"
+      << "threads: " << threads.threads << " (" << threads.reason << ")\n";
+  for (const auto& w : threads.warnings) log << "warning: " << w << "\n";
   for (const auto& s : skipped) log << "skipped: " << s << "\n";
 
   RunInfo info;
@@ -239,6 +240,20 @@ int run_experiment(const Experiment& ex, const PluginRegistry& registry, const R
     sink.write_parameters(ex.resolved_yaml, table, std::uint64_t(ex.seed), extra);
   }
   for (auto& o : observers) o->begin(sys, info, sink);
+  // Observer state in the checkpoint is keyed by position and plugin, "observers[2].stress".
+  auto observer_key = [&](std::size_t i) {
+    return "observers[" + std::to_string(i) + "]." + ex.observers[i].plugin.name;
+  };
+  if (!opt.resume.empty())
+    for (std::size_t i = 0; i < observers.size(); ++i) {
+      const auto it = resume.blobs.find(observer_key(i));
+      if (it != resume.blobs.end()) {
+        observers[i]->restore_state(it->second);
+      } else if (!observers[i]->save_state().empty()) {
+        log << "warning: " << opt.resume << " holds no state for " << observer_key(i)
+            << ": its averages start afresh\n";
+      }
+    }
 
   auto write_checkpoint_now = [&](const std::string& path) {
     Checkpoint c;
@@ -253,6 +268,10 @@ int run_experiment(const Experiment& ex, const PluginRegistry& registry, const R
     c.seed = std::uint64_t(ex.seed);
     c.experiment_yaml = ex.resolved_yaml;
     c.warm_start = evaluator.warm_start();
+    for (std::size_t i = 0; i < observers.size(); ++i) {
+      std::vector<double> state = observers[i]->save_state();
+      if (!state.empty()) c.blobs[observer_key(i)] = std::move(state);
+    }
     write_checkpoint(path, c);
   };
   const std::string checkpoint_path = output + ".checkpoint";

@@ -6,6 +6,7 @@
 // body when there is no lubrication (free draining).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,10 +18,16 @@
 
 namespace fldsim::hydro {
 
+// The phi correction of R_0: none (isolated spheres), Kumar & Higdon's fit made with the LAMMPS
+// lubrication forms (reference §1a), or fldsim's refit for its Jeffrey-Onishi forms.
+enum class IsotropicFit { None, KumarHigdon, Fldsim };
+IsotropicFactors isotropic_factors(IsotropicFit fit, double phi);
+
 struct ModelSettings {
   bool lubrication = true;
   IsotropicForm isotropic = IsotropicForm::Sphere;
-  bool phi_fit = false;  // scale R_0 by the Kumar & Higdon phi fit (fld)
+  IsotropicFit fit = IsotropicFit::None;          // which R_0(phi) correction (fld)
+  std::optional<IsotropicFactors> fixed_factors;  // calibration only: use these, ignore fit
   LubricationOptions lub;
   double cutoff = 2.5;
   double tolerance = 1e-6;
@@ -30,9 +37,6 @@ struct ModelSettings {
 // Declare and read the parameters common to lubrication and fld.
 void describe_lubrication_params(ParamSchema& schema);
 ModelSettings read_lubrication_params(const Params& params);
-
-// Kumar & Higdon FLD fit (LAMMPS pair_lubricateU, log terms on; reference §1a).
-IsotropicFactors fld_factors(double phi);
 
 class ResistanceModel : public HydroModel {
  public:

@@ -1,5 +1,5 @@
 // Fast Lubrication Dynamics (Kumar & Higdon 2010): R_FU = R_0(phi) + R_delta, with the isotropic
-// R_0(phi) of the LAMMPS pair_lubricateU fit, phi = the true volume fraction of the system.
+// R_0(phi) fitted to hard-sphere short-time diffusivities (r0_fit), phi = the true volume fraction.
 #include "ResistanceModel.hpp"
 #include "fldsim/plugin.hpp"
 
@@ -12,6 +12,9 @@ class Fld : public fldsim::hydro::ResistanceModel {
     s.choice("isotropic", std::string("sphere"), {"sphere", "body"},
              "R_0 per body: a sphere of the node radius, or the body's own free-draining resistance; both "
              "scaled by the phi fit");
+    s.choice("r0_fit", std::string("fldsim"), {"fldsim", "kumar_higdon"},
+             "R_0(phi) correction: fldsim's refit for its Jeffrey-Onishi forms, or Kumar & Higdon's fit "
+             "made for the LAMMPS forms (use with pump: lammps, twist: false for LAMMPS parity)");
   }
   explicit Fld(const fldsim::Params& p) : ResistanceModel(settings(p)) {}
 
@@ -19,7 +22,8 @@ class Fld : public fldsim::hydro::ResistanceModel {
   static fldsim::hydro::ModelSettings settings(const fldsim::Params& p) {
     auto s = fldsim::hydro::read_lubrication_params(p);
     s.lubrication = true;
-    s.phi_fit = true;
+    s.fit = p.text("r0_fit") == "kumar_higdon" ? fldsim::hydro::IsotropicFit::KumarHigdon
+                                               : fldsim::hydro::IsotropicFit::Fldsim;
     s.isotropic = p.text("isotropic") == "body" ? fldsim::hydro::IsotropicForm::Body
                                                 : fldsim::hydro::IsotropicForm::Sphere;
     return s;

@@ -7,6 +7,8 @@
 #include <cstddef>
 #include <vector>
 
+#include "fldsim/observer_state.hpp"
+
 namespace fldsim::observers {
 
 struct BlockingLevel {
@@ -26,6 +28,12 @@ class BlockAverage {
   void clear() { samples_.clear(); }
   std::size_t count() const { return samples_.size(); }
   const std::vector<double>& samples() const { return samples_; }
+  // Checkpoint state: the samples themselves (blocking needs the whole series).
+  void save(StateWriter& w) const { w.put(samples_); }
+  void restore(StateReader& r) {
+    const std::vector<double> v = r.get_vector();
+    samples_.assign(v.begin(), v.end());
+  }
 
   double mean() const;
   // All blocking levels that keep at least kMinBlocks blocks (level 0 = the raw samples).

@@ -83,4 +83,16 @@ void OrientationObserver::finish(const RunInfo&, ResultSink& out) {
                   "row k: unit eigenvector of Q for eigenvalue k (x, y, z)");
 }
 
+std::vector<double> OrientationObserver::save_state() const {
+  StateWriter w;
+  stats_.save(w);
+  return w.take();
+}
+
+void OrientationObserver::restore_state(const std::vector<double>& state) {
+  StateReader r(state, "orientation");
+  stats_.restore(r);
+  r.finish();
+}
+
 }  // namespace fldsim::observers

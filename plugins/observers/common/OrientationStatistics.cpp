@@ -86,6 +86,31 @@ void OrientationStatistics::add_sample(const std::vector<Vec3>& directors) {
     for (int j = 0; j < 3; ++j) q_[i * 3 + j].add(last_q_(i, j));
 }
 
+void OrientationStatistics::save(StateWriter& w) const {
+  w.put(count_theta_).put(count_phi_).put(count_map_).put(double(seen_));
+  for (const auto& b : p_theta_series_) b.save(w);
+  for (const auto& b : p_phi_series_) b.save(w);
+  theta_m_.save(w);
+  phi_m_.save(w);
+  for (const auto& b : q_) b.save(w);
+  w.put(last_theta_m_).put(last_phi_m_).put(last_q_);
+}
+
+void OrientationStatistics::restore(StateReader& r) {
+  r.get_into(count_theta_);
+  r.get_into(count_phi_);
+  r.get_into(count_map_);
+  seen_ = static_cast<decltype(seen_)>(r.get());
+  for (auto& b : p_theta_series_) b.restore(r);
+  for (auto& b : p_phi_series_) b.restore(r);
+  theta_m_.restore(r);
+  phi_m_.restore(r);
+  for (auto& b : q_) b.restore(r);
+  last_theta_m_ = r.get();
+  last_phi_m_ = r.get();
+  r.get_into(last_q_);
+}
+
 std::vector<double> OrientationStatistics::p_theta() const {
   std::vector<double> p(n_theta_);
   for (int b = 0; b < n_theta_; ++b)

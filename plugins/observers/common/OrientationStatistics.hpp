@@ -25,6 +25,9 @@ class OrientationStatistics {
   // Reserve room for the expected number of samples (no allocation while sampling).
   void reserve(std::size_t samples);
   void add_sample(const std::vector<Vec3>& directors);
+  // Checkpoint state (exact restart); restore needs the same bin counts.
+  void save(StateWriter& w) const;
+  void restore(StateReader& r);
 
   int theta_bins() const { return n_theta_; }
   int phi_bins() const { return n_phi_; }

@@ -1,0 +1,28 @@
+// How many OpenMP threads a run uses, and why. OpenMP threads that outnumber the free cores do
+// not just share them: at every barrier (several per conjugate-gradient iteration) a thread spins
+// waiting for one that is descheduled, and a step can become a hundred times slower. So the
+// automatic choice takes the cores this process may use (affinity mask) minus those already busy
+// (1-minute load average), and no more threads than the system has work for.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace fldsim {
+
+struct ThreadPlan {
+  int threads = 1;
+  std::string reason;                 // for the run log
+  std::vector<std::string> warnings;  // oversubscription risks, for the run log
+};
+
+// requested: the experiment's run.threads (0 = automatic).
+ThreadPlan plan_threads(std::int64_t requested, std::size_t bodies);
+
+// Bodies per thread below which another thread costs more (fork/join and barriers per CG
+// iteration) than it saves; measured by bench/step (see bench/RESULTS.md).
+inline constexpr std::size_t kBodiesPerThread = 500;
+
+}  // namespace fldsim
