@@ -62,7 +62,10 @@ ParamSchema run_schema() {
       .greater(0.0);
   s.number("checkpoint_every", 0.0, "time_unit", "write a checkpoint this often (0 = only at the end)")
       .at_least(0.0);
-  s.integer("threads", 0, "", "OpenMP threads; 0 = OMP_NUM_THREADS or all cores").at_least(0);
+  s.integer("threads", 0, "",
+            "OpenMP threads; 0 = automatic: OMP_NUM_THREADS if set, else the idle usable cores, at most one "
+            "per 500 bodies")
+      .at_least(0);
   return s;
 }
 
