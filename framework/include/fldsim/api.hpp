@@ -4,9 +4,12 @@
 // with a message instead of crashing.
 #pragma once
 
+#include <Eigen/Core>  // for its version and alignment in the build tag
 #include <cstdint>
 
-#define FLDSIM_API_MAJOR 1
+// Major: any change to a class a plugin derives from or receives (2: Observer save/restore_state).
+// Minor: additions a plugin built against an older minor can ignore.
+#define FLDSIM_API_MAJOR 2
 #define FLDSIM_API_MINOR 0
 
 #define FLDSIM_STR2(x) #x
@@ -14,14 +17,10 @@
 
 // Everything that changes the layout of a C++ object shared with a plugin: compiler ABI,
 // libstdc++ string ABI, Eigen version and alignment. Plugins and core must agree exactly.
-#ifndef EIGEN_MAX_ALIGN_BYTES
-#define FLDSIM_EIGEN_ALIGN "default"
-#else
-#define FLDSIM_EIGEN_ALIGN FLDSIM_STR(EIGEN_MAX_ALIGN_BYTES)
-#endif
-#define FLDSIM_BUILD_TAG                                                              \
-  "gcc-abi" FLDSIM_STR(__GXX_ABI_VERSION) "/cxx11abi" FLDSIM_STR(_GLIBCXX_USE_CXX11_ABI) \
-  "/api" FLDSIM_STR(FLDSIM_API_MAJOR)
+#define FLDSIM_BUILD_TAG \
+  "gcc-abi" FLDSIM_STR(__GXX_ABI_VERSION) "/cxx11abi" FLDSIM_STR(_GLIBCXX_USE_CXX11_ABI) "/eigen" FLDSIM_STR( \
+      EIGEN_WORLD_VERSION) "." FLDSIM_STR(EIGEN_MAJOR_VERSION) "." FLDSIM_STR(EIGEN_MINOR_VERSION) "/align" \
+      FLDSIM_STR(EIGEN_MAX_ALIGN_BYTES) "/api" FLDSIM_STR(FLDSIM_API_MAJOR)
 
 #if defined(__GNUC__)
 #define FLDSIM_VISIBLE __attribute__((visibility("default")))

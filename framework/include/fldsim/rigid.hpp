@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>  // Vec3::cross
 
 #include "fldsim/box.hpp"
 
@@ -25,7 +26,9 @@ inline Mat6 node_kinematics(const Vec3& r) {
   return K;
 }
 
-inline Vec3 node_velocity(const Vec3& U, const Vec3& Omega, const Vec3& r) { return U + Omega.cross(r); }
+inline Vec3 node_velocity(const Vec3& U, const Vec3& Omega, const Vec3& r) {
+  return U + Omega.cross(r);
+}
 
 // Add the wrench of a node force f and torque l applied at offset r to a body's (F, T).
 inline void add_node_wrench(double* body6, const Vec3& r, const Vec3& f, const Vec3& l) {

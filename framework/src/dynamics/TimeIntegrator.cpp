@@ -16,16 +16,20 @@ std::string EulerMaruyama::describe() const {
 void EulerMaruyama::step(System& s, VelocityEvaluator& ev, double dt, bool want_virial) {
   base_.save(s);
   ev.prepare(s, want_virial);
-  if (brownian_) ev.draw_brownian(s, RandomStream(seed_, RandomPurpose::BodyNoise, std::uint64_t(s.step())), dt);
+  if (brownian_)
+    ev.draw_brownian(s, RandomStream(seed_, RandomPurpose::BodyNoise, std::uint64_t(s.step())), dt);
   ev.solve(s, brownian_);
-  if (brownian_ && drift_ == DriftScheme::Midpoint) {
+  const bool midpoint = brownian_ && drift_ == DriftScheme::Midpoint;
+  if (midpoint) {
     std::copy_n(ev.velocity(), U_.size(), U_.begin());
+    at_stress_stage(StressStage::Start, s, ev, want_virial);
     move_from(s, base_, U_.data(), 0.5 * dt);
-    ev.prepare(s, want_virial);
+    ev.prepare(s, false);
     ev.solve(s, true);  // same F_B: the noise is frozen over the step
   }
   std::copy_n(ev.velocity(), U_.size(), U_.begin());
   std::copy_n(ev.relative_velocity(), dU_.size(), dU_.begin());
+  at_stress_stage(midpoint ? StressStage::Final : StressStage::Start, s, ev, want_virial);
   move_from(s, base_, U_.data(), dt);
   record_displacement(s, U_.data(), dU_.data(), dt);
   wrap_into_box(s);
@@ -33,8 +37,14 @@ void EulerMaruyama::step(System& s, VelocityEvaluator& ev, double dt, bool want_
 }
 
 RungeKutta3::RungeKutta3(std::size_t bodies)
-    : k1_(6 * bodies), k2_(6 * bodies), k3_(6 * bodies), r1_(6 * bodies), r2_(6 * bodies), r3_(6 * bodies),
-      U_(6 * bodies), dU_(6 * bodies) {}
+    : k1_(6 * bodies),
+      k2_(6 * bodies),
+      k3_(6 * bodies),
+      r1_(6 * bodies),
+      r2_(6 * bodies),
+      r3_(6 * bodies),
+      U_(6 * bodies),
+      dU_(6 * bodies) {}
 
 void RungeKutta3::step(System& s, VelocityEvaluator& ev, double dt, bool want_virial) {
   const std::size_t n6 = U_.size();
@@ -46,6 +56,7 @@ void RungeKutta3::step(System& s, VelocityEvaluator& ev, double dt, bool want_vi
     std::copy_n(ev.relative_velocity(), n6, r.begin());
   };
   stage(k1_, r1_);
+  at_stress_stage(StressStage::Start, s, ev, want_virial);
   move_from(s, base_, k1_.data(), 0.5 * dt);
   stage(k2_, r2_);
   for (std::size_t k = 0; k < n6; ++k) U_[k] = 2.0 * k2_[k] - k1_[k];

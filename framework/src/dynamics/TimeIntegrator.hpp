@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,8 @@
 #include "dynamics/VelocityEvaluator.hpp"
 
 namespace fldsim {
+
+enum class StressStage { Start, Final };
 
 class TimeIntegrator {
  public:
@@ -29,6 +32,19 @@ class TimeIntegrator {
   // Velocity actually used for the step (6N total / relative), for observers.
   virtual const double* step_velocity() const = 0;
   virtual const double* step_relative_velocity() const = 0;
+  // Called on steps with want_virial (StressSampler): Start after the solve at the start of the
+  // step, Final after the midpoint solve (Euler-Maruyama with midpoint drift only). The hook may
+  // solve again: the integrator has copied what it needs, and the hook restores the warm start.
+  using StageHook = std::function<void(StressStage, const System&, VelocityEvaluator&)>;
+  void set_stress_stage(StageHook hook) { stress_stage_ = std::move(hook); }
+
+ protected:
+  void at_stress_stage(StressStage stage, const System& s, VelocityEvaluator& ev, bool want_virial) const {
+    if (want_virial && stress_stage_) stress_stage_(stage, s, ev);
+  }
+
+ private:
+  StageHook stress_stage_;
 };
 
 enum class DriftScheme { None, Midpoint };

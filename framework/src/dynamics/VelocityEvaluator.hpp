@@ -27,9 +27,9 @@ class VelocityEvaluator {
   // Solve with F_P (+ the stored F_B if with_brownian). Warm-started from the previous dU.
   void solve(const System& s, bool with_brownian);
 
-  const double* velocity() const { return U_.data(); }        // total U, Omega (6N)
+  const double* velocity() const { return U_.data(); }            // total U, Omega (6N)
   const double* relative_velocity() const { return dU_.data(); }  // U - U_inf (6N)
-  const double* force() const { return FP_.data(); }           // F_P (6N)
+  const double* force() const { return FP_.data(); }              // F_P (6N)
   const double* brownian_force() const { return FB_.data(); }
   const Eigen::Matrix3d& virial() const { return virial_; }
   std::vector<double>& warm_start() { return dU_; }

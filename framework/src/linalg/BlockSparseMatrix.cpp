@@ -81,13 +81,18 @@ Eigen::MatrixXd BlockSparseMatrix::dense() const {
   return A;
 }
 
-void BlockJacobiPCG::prepare(const BlockSparseMatrix& A) {
+void BlockPCG::prepare(const BlockSparseMatrix& A) {
   const std::size_t n = A.blocks();
-  inv_diag_.resize(n);
   r_.resize(6 * n);
   z_.resize(6 * n);
   p_.resize(6 * n);
   q_.resize(6 * n);
+  if (kind_ == Preconditioner::IncompleteCholesky && ic_.factorize(A)) {
+    active_ = Preconditioner::IncompleteCholesky;
+    return;
+  }
+  active_ = Preconditioner::BlockJacobi;
+  inv_diag_.resize(n);
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < std::int64_t(n); ++i) {
     // Diagonal blocks of an SPD matrix are SPD: invert through their Cholesky factor.
@@ -105,8 +110,19 @@ double dot(const std::vector<double>& a, const std::vector<double>& b) {
 }
 }  // namespace
 
-BlockJacobiPCG::Result BlockJacobiPCG::solve(const BlockSparseMatrix& A, const double* b, double* x,
-                                             double tolerance, int max_iterations) {
+void BlockPCG::precondition(const std::vector<double>& in, std::vector<double>& out) const {
+  if (active_ == Preconditioner::IncompleteCholesky) {
+    ic_.apply(in.data(), out.data());
+    return;
+  }
+  const std::int64_t n = std::int64_t(inv_diag_.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i)
+    Eigen::Map<Vec6>(out.data() + 6 * i) = inv_diag_[i] * Eigen::Map<const Vec6>(in.data() + 6 * i);
+}
+
+BlockPCG::Result BlockPCG::solve(const BlockSparseMatrix& A, const double* b, double* x, double tolerance,
+                                 int max_iterations) {
   const std::size_t n = A.blocks();
   const std::size_t m = 6 * n;
   Result result;
@@ -118,12 +134,6 @@ BlockJacobiPCG::Result BlockJacobiPCG::solve(const BlockSparseMatrix& A, const d
     result.converged = true;
     return result;
   }
-  auto precondition = [&](const std::vector<double>& in, std::vector<double>& out) {
-#pragma omp parallel for schedule(static)
-    for (std::int64_t i = 0; i < std::int64_t(n); ++i)
-      Eigen::Map<Vec6>(out.data() + 6 * i) = inv_diag_[i] * Eigen::Map<const Vec6>(in.data() + 6 * i);
-  };
-
   A.multiply(x, q_.data());
   for (std::size_t k = 0; k < m; ++k) r_[k] = b[k] - q_[k];
   double rnorm = std::sqrt(dot(r_, r_));

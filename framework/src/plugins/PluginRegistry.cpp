@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <boost/core/demangle.hpp>
+#include <boost/dll/runtime_symbol_info.hpp>
 #include <boost/dll/shared_library.hpp>
 #include <cstdlib>
 #include <cstring>
@@ -157,7 +158,16 @@ std::vector<std::string> PluginRegistry::search_path(const std::vector<std::stri
       start = end + 1;
     }
   }
-  candidates.push_back(FLDSIM_PLUGIN_BUILD_DIR);
+  // Relative to where this core library was loaded from: the build tree's core searches the build
+  // tree's plugins; an installed core searches <libdir>/fldsim/plugins next to itself, under
+  // whatever prefix it was installed to (cmake --install --prefix P). The configured install
+  // directory stays as a fallback.
+  std::error_code ec;
+  const fs::path core_dir = boost::dll::this_line_location(ec).parent_path();
+  if (!ec && canonical_or_same(core_dir.string()) == canonical_or_same(FLDSIM_CORE_BUILD_DIR))
+    candidates.push_back(FLDSIM_PLUGIN_BUILD_DIR);
+  else if (!ec)
+    candidates.push_back((core_dir / FLDSIM_PLUGIN_DIR_FROM_CORE).lexically_normal().string());
   candidates.push_back(FLDSIM_PLUGIN_INSTALL_DIR);
 
   std::vector<std::string> result, ids;

@@ -1,0 +1,40 @@
+# Helpers for the sdk_*.cmake scripts (run with cmake -P by ctest).
+set(PREFIX ${WORK}/prefix)
+set(FLDSIM ${PREFIX}/bin/fldsim)
+
+# sdk_run(<what> OUT <var> [RESULT <var>] COMMAND ...): runs a command, output (stdout+stderr)
+# into <var>; fails the test with the output unless it exits 0 or RESULT is given.
+function(sdk_run what)
+  cmake_parse_arguments(R "" "OUT;RESULT" "COMMAND" ${ARGN})
+  string(TIMESTAMP start "%s")
+  execute_process(COMMAND ${R_COMMAND} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
+  if(R_RESULT)
+    set(${R_RESULT} ${rc} PARENT_SCOPE)
+  elseif(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${what} failed (exit ${rc}):\n${R_COMMAND}\n${out}")
+  endif()
+  if(R_OUT)
+    set(${R_OUT} "${out}" PARENT_SCOPE)
+  endif()
+  string(TIMESTAMP end "%s")
+  math(EXPR seconds "${end} - ${start}")
+  message(STATUS "ok: ${what} (${seconds} s)")
+endfunction()
+
+# sdk_expect(<what> <text> <needle>): fails unless <needle> occurs literally in <text>.
+function(sdk_expect what text needle)
+  string(FIND "${text}" "${needle}" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "${what}: expected to find\n  ${needle}\nin:\n${text}")
+  endif()
+  message(STATUS "ok: ${what}")
+endfunction()
+
+# The environment a user has after `export FLDSIM_PLUGIN_PATH=...` (or without it).
+function(sdk_plugin_path value)
+  if(value STREQUAL "")
+    unset(ENV{FLDSIM_PLUGIN_PATH})
+  else()
+    set(ENV{FLDSIM_PLUGIN_PATH} "${value}")
+  endif()
+endfunction()
