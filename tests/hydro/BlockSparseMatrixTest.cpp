@@ -1,4 +1,4 @@
-// BlockSparseMatrix and BlockJacobiPCG against dense Eigen algebra.
+// BlockSparseMatrix and BlockPCG against dense Eigen algebra.
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -9,7 +9,7 @@
 
 #include "fldsim/block_sparse.hpp"
 
-using fldsim::BlockJacobiPCG;
+using fldsim::BlockPCG;
 using fldsim::BlockSparseMatrix;
 using fldsim::Mat6;
 
@@ -94,14 +94,17 @@ TEST(BlockSparseMatrix, MultiplyIsIndependentOfThreadCount) {
 }
 #endif
 
-TEST(BlockJacobiPCG, MatchesDenseLUWithinConditionTimesResidual) {
+class BlockPCGWith : public ::testing::TestWithParam<fldsim::Preconditioner> {};
+
+TEST_P(BlockPCGWith, MatchesDenseLUWithinConditionTimesResidual) {
   const BlockSparseMatrix A = random_spd(50, 0.08, 21);
   const Eigen::MatrixXd D = A.dense();
   const Eigen::VectorXd b = random_vector(A.size(), 23);
   const Eigen::VectorXd ref = D.partialPivLu().solve(b);
 
-  BlockJacobiPCG pcg;
+  BlockPCG pcg(GetParam());
   pcg.prepare(A);
+  EXPECT_EQ(pcg.active(), GetParam());
   Eigen::VectorXd x = Eigen::VectorXd::Zero(A.size());
   const double tol = 1e-8;
   const auto res = pcg.solve(A, b.data(), x.data(), tol, 500);
@@ -122,10 +125,40 @@ TEST(BlockJacobiPCG, MatchesDenseLUWithinConditionTimesResidual) {
   EXPECT_EQ(again.iterations, 0);
 }
 
-TEST(BlockJacobiPCG, ReportsNonConvergence) {
+INSTANTIATE_TEST_SUITE_P(Preconditioners, BlockPCGWith,
+                         ::testing::Values(fldsim::Preconditioner::BlockJacobi,
+                                           fldsim::Preconditioner::IncompleteCholesky));
+
+// IC(0) drops only fill outside the pattern; a block tridiagonal (chain) pattern has none, so the
+// factor is the exact Cholesky factor and PCG converges in one iteration to round-off.
+TEST(BlockIncompleteCholesky, IsExactWithoutFill) {
+  const std::size_t n = 20;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> chain;
+  for (std::uint32_t i = 0; i + 1 < n; ++i) chain.push_back({i, i + 1});
+  BlockSparseMatrix A;
+  A.set_pattern(n, chain);
+  std::mt19937_64 rng(41);
+  std::normal_distribution<double> g;
+  for (std::size_t i = 0; i < n; ++i) A.diagonal(i) = 30.0 * fldsim::Mat6::Identity();
+  for (std::uint32_t i = 0; i + 1 < n; ++i) {
+    fldsim::Mat6 c;
+    for (int k = 0; k < 36; ++k) c(k / 6, k % 6) = g(rng);
+    A.upper(A.find(i, i + 1)) = c;
+  }
+  const Eigen::VectorXd b = random_vector(A.size(), 43);
+  BlockPCG pcg(fldsim::Preconditioner::IncompleteCholesky);
+  pcg.prepare(A);
+  ASSERT_EQ(pcg.active(), fldsim::Preconditioner::IncompleteCholesky);
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(A.size());
+  const auto res = pcg.solve(A, b.data(), x.data(), 1e-12, 10);
+  EXPECT_TRUE(res.converged);
+  EXPECT_EQ(res.iterations, 1);
+}
+
+TEST(BlockPCG, ReportsNonConvergence) {
   const BlockSparseMatrix A = random_spd(50, 0.2, 31);
   const Eigen::VectorXd b = random_vector(A.size(), 33);
-  BlockJacobiPCG pcg;
+  BlockPCG pcg(fldsim::Preconditioner::BlockJacobi);
   pcg.prepare(A);
   Eigen::VectorXd x = Eigen::VectorXd::Zero(A.size());
   // Two iterations cannot reach 1e-14 for a 300-unknown system with coupled blocks.

@@ -58,7 +58,7 @@ TEST(ProgressReporter, WindowedSpeedEtaWarningsAndFinalLine) {
   EXPECT_NE(text.find("step 2000/20000 (10.0%)  t = 1 1/gammadot  100 steps/s  ETA 3m00s"), std::string::npos)
       << text;
   // Final line: 20000 steps in 115 s -> mean 173.9 steps/s.
-  EXPECT_NE(text.find("done: 20000 steps in 1m55s wall time (115.000 s), mean 173.9 steps/s"),
+  EXPECT_NE(text.find("progress: 20000 steps in 1m55s wall time (115.000 s), mean 173.9 steps/s"),
             std::string::npos)
       << text;
 }
@@ -76,7 +76,7 @@ TEST(ProgressReporter, LiveModeRewritesOneLine) {
   EXPECT_EQ(count(before_finish, "\n"), 0);   // one line, rewritten
   EXPECT_EQ(count(before_finish, "\r"), 10);  // every 1 s over 10 s
   r.finish(10.0);
-  EXPECT_NE(out.str().find("\ndone: 100 steps"), std::string::npos);
+  EXPECT_NE(out.str().find("\nprogress: 100 steps"), std::string::npos);
 }
 
 }  // namespace

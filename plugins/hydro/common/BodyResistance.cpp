@@ -42,18 +42,26 @@ bool BodyResistance::update(const System& system, const NodePairList& pairs) {
     const Accepted& p = accepted_[k];
     PairRows S;
     LubricationPair::rows(radii_[p.node_a], radii_[p.node_b], p.separation, mu, options_, S);
-    const Mat6 Ka = node_kinematics(offsets[std::size_t(p.body_i) * m + p.node_a]);
-    const Mat6 Kb = node_kinematics(offsets[std::size_t(p.body_j) * m + p.node_b]);
+    const Vec3& xa = offsets[std::size_t(p.body_i) * m + p.node_a];
+    const Vec3& xb = offsets[std::size_t(p.body_j) * m + p.node_b];
     BodyRows& B = rows_[k];
-    B.leftCols<6>().noalias() = S.leftCols<6>() * Ka;
-    B.rightCols<6>().noalias() = S.rightCols<6>() * Kb;
-    // Gram blocks, symmetrised so that R is symmetric to the last bit (the product kernel does
-    // not promise it).
-    const Mat6 ii = B.leftCols<6>().transpose() * B.leftCols<6>();
-    const Mat6 jj = B.rightCols<6>().transpose() * B.rightCols<6>();
+    // Fixed-size products as lazy (coefficient) products: Eigen 3.4 otherwise sends these small
+    // shapes to its general blocked kernel, which dominated the assembly. A node at its body's
+    // centre (every sphere) has identity kinematics.
+    if (xa.isZero(0.0))
+      B.leftCols<6>() = S.leftCols<6>();
+    else
+      B.leftCols<6>() = S.leftCols<6>().lazyProduct(node_kinematics(xa));
+    if (xb.isZero(0.0))
+      B.rightCols<6>() = S.rightCols<6>();
+    else
+      B.rightCols<6>() = S.rightCols<6>().lazyProduct(node_kinematics(xb));
+    // Gram blocks, symmetrised so that R is symmetric to the last bit.
+    const Mat6 ii = B.leftCols<6>().transpose().lazyProduct(B.leftCols<6>());
+    const Mat6 jj = B.rightCols<6>().transpose().lazyProduct(B.rightCols<6>());
     block_ii_[k] = 0.5 * (ii + ii.transpose());
     block_jj_[k] = 0.5 * (jj + jj.transpose());
-    block_ij_[k].noalias() = B.leftCols<6>().transpose() * B.rightCols<6>();
+    block_ij_[k] = B.leftCols<6>().transpose().lazyProduct(B.rightCols<6>());
   }
   return changed;
 }

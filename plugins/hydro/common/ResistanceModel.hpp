@@ -32,6 +32,7 @@ struct ModelSettings {
   double cutoff = 2.5;
   double tolerance = 1e-6;
   int max_iterations = 1000;
+  Preconditioner preconditioner = Preconditioner::IncompleteCholesky;
 };
 
 // Declare and read the parameters common to lubrication and fld.
@@ -40,7 +41,7 @@ ModelSettings read_lubrication_params(const Params& params);
 
 class ResistanceModel : public HydroModel {
  public:
-  explicit ResistanceModel(ModelSettings settings) : settings_(settings) {}
+  explicit ResistanceModel(ModelSettings settings) : settings_(settings), pcg_(settings.preconditioner) {}
 
   double pair_range(const System& system) const override;
   std::vector<std::string> configure(const System& system, const HydroRequest& request) override;
@@ -63,7 +64,7 @@ class ResistanceModel : public HydroModel {
   IsotropicResistance iso_;
   BodyResistance lub_;
   BlockSparseMatrix A_;
-  BlockJacobiPCG pcg_;
+  BlockPCG pcg_;
   std::vector<double> strain_force_, rhs_;
   SolveStats stats_;
   bool configured_ = false;

@@ -106,7 +106,7 @@ void ProgressReporter::finish(double wall) {
   const std::int64_t steps = last_step_ - first_step_;
   char total[32], line[160];
   format_duration(elapsed, total, sizeof total);
-  std::snprintf(line, sizeof line, "done: %lld steps in %s wall time (%.3f s), mean %.4g steps/s",
+  std::snprintf(line, sizeof line, "progress: %lld steps in %s wall time (%.3f s), mean %.4g steps/s",
                 static_cast<long long>(steps), total, elapsed,
                 elapsed > 0.0 ? static_cast<double>(steps) / elapsed : 0.0);
   out_ << line << '\n' << std::flush;
