@@ -64,7 +64,7 @@ ParamSchema run_schema() {
       .at_least(0.0);
   s.integer("threads", 0, "",
             "OpenMP threads; 0 = automatic: OMP_NUM_THREADS if set, else the idle usable cores, at most one "
-            "per 500 bodies")
+            "per 2000 bodies")
       .at_least(0);
   return s;
 }

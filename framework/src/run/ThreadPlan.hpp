@@ -22,7 +22,9 @@ struct ThreadPlan {
 ThreadPlan plan_threads(std::int64_t requested, std::size_t bodies);
 
 // Bodies per thread below which another thread costs more (fork/join and barriers per CG
-// iteration) than it saves; measured by bench/step (see bench/RESULTS.md).
-inline constexpr std::size_t kBodiesPerThread = 500;
+// iteration, and the IC(0) sweeps are sequential) than it saves. bench/step measured a 2-thread
+// speed-up of 0.64-0.90 at N = 1000 on the shared 2-core machine (bench/RESULTS.md), so one
+// thread up to 2000 bodies.
+inline constexpr std::size_t kBodiesPerThread = 2000;
 
 }  // namespace fldsim
