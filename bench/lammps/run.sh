@@ -1,0 +1,151 @@
+#!/usr/bin/env bash
+# fldsim against LAMMPS FLD (pair lubricateU + pair brownian), the same sphere scene, one thread:
+# ms per step of each, their ratio, CG iterations per step and the relative viscosity each gives.
+# Writes OUTDIR/lammps.md (a markdown fragment) and prints it.
+#
+#   bench/lammps/run.sh [BUILD] [OUTDIR]      (defaults: build, bench/lammps/out)
+#
+# Environment: STEPS (timed steps, 200), WARMUP (steps before timing, 20), EVERY (stress sampling
+# period in steps, 1), COUNT_CG (1: count CG iterations in extra runs under gdb, 0: skip),
+# COUNT_STEPS (steps of those counting runs, 50), FRESH_START (1: redo the Monte Carlo start even
+# if OUTDIR/start.h5 exists; it is deterministic, so it is reused by default), REPEAT (timed runs
+# of each code, taking turns; the median is reported, 3).
+set -euo pipefail
+
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+root="$(cd "$here/../.." && pwd)"
+build="$(cd "${1:-$root/build}" && pwd)"
+outdir="${2:-$here/out}"
+mkdir -p "$outdir"
+outdir="$(cd "$outdir" && pwd)"
+
+STEPS="${STEPS:-200}"
+WARMUP="${WARMUP:-20}"
+EVERY="${EVERY:-1}"
+COUNT_CG="${COUNT_CG:-1}"
+COUNT_STEPS="${COUNT_STEPS:-50}"
+FRESH_START="${FRESH_START:-0}"
+REPEAT="${REPEAT:-3}"
+DT=1.0e-4   # a^2/D0, both codes
+PE=10
+CUTIN=2.00001   # LAMMPS inner cutoff = 2 a + fldsim's delta_num (1e-5 a)
+PY=/usr/bin/python3
+export OMP_NUM_THREADS=1
+
+fldsim="$build/bin/fldsim"
+[[ -x "$fldsim" ]] || { echo "run.sh: no fldsim executable at $fldsim (build first)" >&2; exit 2; }
+
+as_root() { if [[ $(id -u) -eq 0 ]]; then "$@"; else sudo "$@"; fi; }
+
+# --- LAMMPS from Debian, with the FLD pair styles --------------------------------------------
+if ! command -v lmp > /dev/null; then
+  echo "lammps: not installed; installing Debian's package" >&2
+  install=(env DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends lammps)
+  as_root "${install[@]}" >&2 || { as_root apt-get update >&2 && as_root "${install[@]}" >&2; }
+fi
+lmp_help="$(lmp -h)"
+for style in lubricateU brownian; do
+  if ! grep -qw -- "$style" <<< "$lmp_help"; then
+    echo "run.sh: this LAMMPS ($(command -v lmp)) has no pair style $style (FLD package missing);" \
+      "rebuild Debian's source (apt-get source lammps) with -DPKG_FLD=on" >&2
+    exit 3
+  fi
+done
+lmp_version="$(lmp -h | sed -n 's/^Large-scale Atomic\/Molecular Massively Parallel Simulator - //p' | head -1)"
+lmp_package="$(dpkg-query -W -f='${Version}' lammps 2> /dev/null || echo unknown)"
+
+# --- the shared start ------------------------------------------------------------------------
+cd "$outdir"
+if [[ "$FRESH_START" == 1 || ! -f start.h5 ]]; then
+  echo "start: fldsim hard-sphere Monte Carlo, N = 1000, phi = 0.45 (a few minutes)" >&2
+  "$fldsim" run "$here/start.yaml" -o "$outdir/start.h5" --overwrite > start.log 2>&1 ||
+    { cat start.log >&2; exit 1; }
+else
+  echo "start: reusing $outdir/start.h5 (FRESH_START=1 to redo it)" >&2
+fi
+"$PY" "$here/to_lammps_data.py" "$outdir/start.h5" "$outdir/start.data"
+
+# run_lammps NAME WARM STEPS: one LAMMPS run under /usr/bin/time.
+run_lammps() {
+  /usr/bin/time -f "%U %S %e" -o "$1.time" lmp -in "$here/fld.lmp" -log "$1.log" -screen none -nocite \
+    -var data "$outdir/start.data" -var warm "$2" -var steps "$3" -var dt "$DT" -var pe "$PE" \
+    -var cutin "$CUTIN" -var seed 4321 -var every "$EVERY"
+}
+
+# run_fldsim NAME STEPS [--set ...]: one fldsim run under /usr/bin/time.
+run_fldsim() {
+  local name="$1" steps="$2"
+  shift 2
+  /usr/bin/time -f "%U %S %e" -o "$name.time" "$fldsim" run "$here/scene.yaml" -o "$outdir/$name.h5" \
+    --overwrite --set system.init.file="$outdir/start.h5" \
+    --set run.duration="$("$PY" -c "print($steps * $DT)")" \
+    --set "observers.0.start=$("$PY" -c "print($WARMUP * $DT)")" --set "observers.0.every=$EVERY" \
+    "$@" > "$name.log" 2>&1 || { cat "$name.log" >&2; exit 1; }
+}
+
+lammps_forms=(--set hydro.pump=lammps --set hydro.twist=false --set hydro.r0_fit=kumar_higdon)
+total=$((WARMUP + STEPS))
+
+# Per-step CPU time = (CPU of a WARMUP + STEPS run - CPU of a WARMUP run) / STEPS: start-up and
+# warm-up cancel, and CPU time, unlike wall time, does not count the time a process waits for a
+# core on a shared machine. The long runs are repeated REPEAT times, the codes taking turns, and
+# report.py takes the median (same seeds: every repeat computes the same trajectory).
+echo "timing: warm-up runs ($WARMUP steps)" >&2
+run_lammps lammps-short "$WARMUP" 0
+run_fldsim fldsim-lammps-short "$WARMUP" "${lammps_forms[@]}"
+run_fldsim fldsim-default-short "$WARMUP"
+for ((r = 1; r <= REPEAT; ++r)); do
+  echo "timing: repeat $r of $REPEAT: LAMMPS, fldsim (LAMMPS forms), fldsim (defaults), $total steps each" >&2
+  run_lammps "lammps.$r" "$WARMUP" "$STEPS"
+  run_fldsim "fldsim-lammps.$r" "$total" "${lammps_forms[@]}"
+  run_fldsim "fldsim-default.$r" "$total"
+done
+
+# --- CG iterations: count matrix-vector products in separate runs under gdb ------------------
+# LAMMPS: every CG iteration of lubricateU calls compute_RU once, plus once per solve for the
+# initial residual; compute() is one step (two solves, the midpoint scheme). fldsim: one
+# BlockSparseMatrix::multiply per iteration plus one per solve, BlockJacobiPCG::solve per solve.
+count_calls() {  # count_calls OUT STOP sym1 sym2 ... -- command...
+  # Breakpoints at the functions' own entry points (break *'sym', not by name: a name also matches
+  # PLT stubs and OpenMP-outlined clones, which would count one call two or three times). With
+  # STOP = main they are set once the executable's libraries are loaded; with STOP = - they are set
+  # as pending breakpoints before the run (for a stripped executable such as Debian's lmp).
+  local out="$1" stop="$2"
+  shift 2
+  local -a bps=()
+  while [[ "$1" != "--" ]]; do
+    if [[ "$stop" == - ]]; then bps+=(-ex "break $1"); else bps+=(-ex "break *'$1'"); fi
+    bps+=(-ex "ignore \$bpnum 100000000")
+    shift
+  done
+  shift
+  local -a gdbargs=(-q -batch -ex "set breakpoint pending on" -ex "set pagination off")
+  if [[ "$stop" == - ]]; then
+    gdbargs+=("${bps[@]}" -ex run)
+  else
+    gdbargs+=(-ex "break $stop" -ex run -ex "delete" "${bps[@]}" -ex continue)
+  fi
+  gdb "${gdbargs[@]}" -ex "info breakpoints" --args "$@" > "$out" 2>&1 || true
+}
+if [[ "$COUNT_CG" == 1 ]] && command -v gdb > /dev/null; then
+  echo "counting CG iterations under gdb ($COUNT_STEPS steps each)" >&2
+  count_calls lammps.gdb - 'LAMMPS_NS::PairLubricateU::compute_RU()' \
+    'LAMMPS_NS::PairLubricateU::compute_RU(double**)' -- \
+    lmp -in "$here/fld.lmp" -log none -screen none -nocite -var data "$outdir/start.data" -var warm 0 \
+    -var steps "$COUNT_STEPS" -var dt "$DT" -var pe "$PE" -var cutin "$CUTIN" -var seed 4321 -var every "$EVERY"
+  for variant in lammps default; do
+    extra=()
+    [[ $variant == lammps ]] && extra=("${lammps_forms[@]}")
+    count_calls "fldsim-$variant.gdb" main \
+      'fldsim::BlockJacobiPCG::solve(fldsim::BlockSparseMatrix const&, double const*, double*, double, int)' \
+      'fldsim::BlockSparseMatrix::multiply(double const*, double*) const' -- \
+      "$fldsim" run "$here/scene.yaml" -o "$outdir/count-$variant.h5" --overwrite \
+      --set system.init.file="$outdir/start.h5" --set run.duration="$("$PY" -c "print($COUNT_STEPS * $DT)")" \
+      "${extra[@]}"
+  done
+fi
+
+"$PY" "$here/report.py" --outdir "$outdir" --steps "$STEPS" --warmup "$WARMUP" --every "$EVERY" --repeat "$REPEAT" \
+  --count-steps "$COUNT_STEPS" --dt "$DT" --pe "$PE" --lammps-version "$lmp_version ($lmp_package)" \
+  > "$outdir/lammps.md"
+cat "$outdir/lammps.md"
