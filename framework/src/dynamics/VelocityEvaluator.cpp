@@ -32,6 +32,7 @@ void VelocityEvaluator::solve(const System& s, bool with_brownian) {
   const std::size_t n6 = F_.size();
   for (std::size_t k = 0; k < n6; ++k) F_[k] = FP_[k] + (with_brownian ? FB_[k] : 0.0);
   hydro_->solve(s, F_.data(), dU_.data());
+  total_iterations_ += hydro_->last_solve().iterations;
   const Vec3 w = s.flow_vorticity();
   const auto& x = s.positions();
   for (std::size_t i = 0; i < s.size(); ++i) {

@@ -4,6 +4,7 @@
 // Buffers are sized once; nothing is allocated per call.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -37,6 +38,8 @@ class VelocityEvaluator {
   const CellNeighbourList& neighbour_list() const { return list_; }
   HydroModel& hydro() { return *hydro_; }
   SolveStats stats() const { return hydro_->last_solve(); }
+  // CG iterations of every solve so far (all stages, and extra solves for the stress).
+  std::int64_t total_iterations() const { return total_iterations_; }
 
  private:
   std::shared_ptr<HydroModel> hydro_;
@@ -44,6 +47,7 @@ class VelocityEvaluator {
   CellNeighbourList& list_;
   std::vector<double> FP_, FB_, F_, dU_, U_;
   Eigen::Matrix3d virial_ = Eigen::Matrix3d::Zero();
+  std::int64_t total_iterations_ = 0;
 };
 
 }  // namespace fldsim

@@ -3,6 +3,22 @@
 #include "fldsim/block_sparse.hpp"
 
 namespace fldsim {
+namespace {
+// Inverse of a lower-triangular 6x6 block by forward substitution (Eigen's triangular solve with a
+// matrix right-hand side takes its general blocked path at this size, several times slower).
+Mat6 lower_inverse(const Mat6& L) {
+  Mat6 X = Mat6::Zero();
+  for (int c = 0; c < 6; ++c) {
+    X(c, c) = 1.0 / L(c, c);
+    for (int r = c + 1; r < 6; ++r) {
+      double s = 0.0;
+      for (int k = c; k < r; ++k) s += L(r, k) * X(k, c);
+      X(r, c) = -s / L(r, r);
+    }
+  }
+  return X;
+}
+}  // namespace
 
 bool BlockIncompleteCholesky::factorize(const BlockSparseMatrix& A) {
   const std::size_t n = A.blocks();
@@ -17,7 +33,7 @@ bool BlockIncompleteCholesky::factorize(const BlockSparseMatrix& A) {
     // D_i = L L^T, U_ii = L^T; row i of U: U_ij = L^-1 W_ij (from U_ii^T U_ij = W_ij).
     const Eigen::LLT<Mat6> llt(inv_lower_[i]);
     if (llt.info() != Eigen::Success) return false;
-    inv_lower_[i] = llt.matrixL().solve(Mat6::Identity());
+    inv_lower_[i] = lower_inverse(llt.matrixL());
     const std::int64_t first = row_start_[i], last = row_start_[i + 1];
     for (std::int64_t a = first; a < last; ++a) upper_[a] = (inv_lower_[i] * upper_[a]).eval();
     // Schur complement of block i, kept only on the pattern: D_j -= U_ij^T U_ij,

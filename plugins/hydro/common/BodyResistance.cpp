@@ -101,8 +101,8 @@ void BodyResistance::add_strain_force(const Eigen::Matrix3d& E, double* rhs) {
     // Mode velocities of the ambient flow: only the relative velocity E R_ij of node j enters
     // (the rigid part Omega_inf cancels in every mode).
     const Eigen::Matrix<double, LubricationPair::kRows, 1> e =
-        rows_[k].middleCols<3>(6) * (E * accepted_[k].centre_separation);
-    pair_force_[k].noalias() = -rows_[k].transpose() * e;
+        rows_[k].middleCols<3>(6).lazyProduct(E * accepted_[k].centre_separation);
+    pair_force_[k] = -(rows_[k].transpose().lazyProduct(e));
   }
   sum_per_body(rhs);
 }
@@ -122,7 +122,7 @@ void BodyResistance::add_brownian(const RandomStream& noise, std::size_t nodes_p
       beta[2 * q] = g[0];
       beta[2 * q + 1] = g[1];
     }
-    pair_force_[k].noalias() = scale * (rows_[k].transpose() * beta);
+    pair_force_[k] = scale * rows_[k].transpose().lazyProduct(beta);
   }
   sum_per_body(FB);
 }
@@ -133,11 +133,11 @@ Eigen::Matrix3d BodyResistance::stresslet_sum(const Eigen::Matrix3d& E, const do
     const Accepted& p = accepted_[k];
     const BodyRows& B = rows_[k];
     const Eigen::Matrix<double, LubricationPair::kRows, 1> y =
-        B.leftCols<6>() * Eigen::Map<const Vec6>(dU + 6 * std::size_t(p.body_i)) +
-        B.rightCols<6>() * Eigen::Map<const Vec6>(dU + 6 * std::size_t(p.body_j)) +
-        B.middleCols<3>(6) * (E * p.centre_separation);
+        B.leftCols<6>().lazyProduct(Eigen::Map<const Vec6>(dU + 6 * std::size_t(p.body_i))) +
+        B.rightCols<6>().lazyProduct(Eigen::Map<const Vec6>(dU + 6 * std::size_t(p.body_j))) +
+        B.middleCols<3>(6).lazyProduct(E * p.centre_separation);
     // Hydrodynamic force of the pair on node j (f = -S^T S v, translational rows of node j).
-    const Vec3 Fj = -B.middleCols<3>(6).transpose() * y;
+    const Vec3 Fj = -(B.middleCols<3>(6).transpose().lazyProduct(y));
     // Moment about the two body centres of the equal and opposite pair forces: -R_ij (x) F_j.
     // Sign: sigma = -p I + 2 mu E + (1/V) sum S; two bodies approaching along the compressional
     // axis d = (1,-1,0)/sqrt(2) are pushed apart (F_j along +d), giving S_xy > 0.
