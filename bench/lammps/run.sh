@@ -23,6 +23,9 @@ STEPS="${STEPS:-200}"
 WARMUP="${WARMUP:-20}"
 EVERY="${EVERY:-1}"
 COUNT_CG="${COUNT_CG:-1}"
+# fldsim run re-executes itself to set this OpenMP wait policy unless it is set; setting it here
+# keeps the process under gdb and /usr/bin/time the same one.
+export GOMP_SPINCOUNT="${GOMP_SPINCOUNT:-10000}"
 COUNT_STEPS="${COUNT_STEPS:-50}"
 FRESH_START="${FRESH_START:-0}"
 REPEAT="${REPEAT:-3}"
@@ -137,7 +140,7 @@ if [[ "$COUNT_CG" == 1 ]] && command -v gdb > /dev/null; then
     extra=()
     [[ $variant == lammps ]] && extra=("${lammps_forms[@]}")
     count_calls "fldsim-$variant.gdb" main \
-      'fldsim::BlockJacobiPCG::solve(fldsim::BlockSparseMatrix const&, double const*, double*, double, int)' \
+      'fldsim::BlockPCG::solve(fldsim::BlockSparseMatrix const&, double const*, double*, double, int)' \
       'fldsim::BlockSparseMatrix::multiply(double const*, double*) const' -- \
       "$fldsim" run "$here/scene.yaml" -o "$outdir/count-$variant.h5" --overwrite \
       --set system.init.file="$outdir/start.h5" --set run.duration="$("$PY" -c "print($COUNT_STEPS * $DT)")" \
