@@ -99,8 +99,10 @@ TEST(ExperimentRun, ExistingResultIsNotOverwritten) {
 
 TEST(ExperimentRun, ResumedRunIsBitIdenticalToUninterruptedRun) {
   const fs::path d = scratch("resume");
-  // The orientation observer's accumulated state must survive the restart too.
-  const std::string observers = "observers:\n  - {plugin: orientation, every: 5}\n";
+  // The observers' accumulated state must survive the restart too.
+  const std::string observers =
+      "observers:\n  - {plugin: orientation, every: 5}\n  - {plugin: stress, every: 5}\n"
+      "  - {plugin: pair_distribution, every: 10, range: 3}\n  - {plugin: diffusion, every: 2}\n";
   write(d / "full.yaml", experiment((d / "full.h5").string(), 0.04, "fld", observers));
   write(d / "half.yaml", experiment((d / "half.h5").string(), 0.02, "fld", observers));
   write(d / "rest.yaml", experiment((d / "rest.h5").string(), 0.04, "fld", observers));
@@ -117,10 +119,13 @@ TEST(ExperimentRun, ResumedRunIsBitIdenticalToUninterruptedRun) {
     EXPECT_EQ(a.positions[i], b.positions[i]) << "body " << i;
     EXPECT_EQ(a.orientations[i].coeffs(), b.orientations[i].coeffs()) << "body " << i;
   }
-  const std::string key = "observers[0].orientation";
-  ASSERT_TRUE(a.blobs.count(key) && b.blobs.count(key));
-  EXPECT_FALSE(a.blobs.at(key).empty());
-  EXPECT_EQ(a.blobs.at(key), b.blobs.at(key));  // 8 samples each, the last 4 after the restart
+  // Samples on both sides of the restart (steps 20 of 40): identical accumulators.
+  for (const std::string key : {"observers[0].orientation", "observers[1].stress",
+                                "observers[2].pair_distribution", "observers[3].diffusion"}) {
+    ASSERT_TRUE(a.blobs.count(key) && b.blobs.count(key)) << key;
+    EXPECT_FALSE(a.blobs.at(key).empty()) << key;
+    EXPECT_EQ(a.blobs.at(key), b.blobs.at(key)) << key;
+  }
 }
 
 }  // namespace

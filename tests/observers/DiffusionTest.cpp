@@ -177,3 +177,33 @@ TEST(DiffusionObserver, SampledRunGivesTheBrownianDiffusivity) {
   // Spheres have no director: no rotational results.
   EXPECT_EQ(sink.scalars.count("results/diffusion/D_r"), 0u);
 }
+
+TEST(DiffusionObserver, LagTimesAreInTheRunsTimeUnit) {
+  // A strain-unit run at gammadot = 4: one user time unit is 0.25 internal (a^2/D0). With
+  // max_lag = 2 strain units and dt = 0.01 a^2/D0 the largest lag is 50 steps = 0.5 a^2/D0
+  // = 2 strain units; lag times are written as given (strain) and labelled with the run's unit.
+  const std::size_t n = 4;
+  const double dt = 0.01;
+  System sys(std::make_shared<SphereShape>(), n, 20.0, Physics{});
+  RunInfo run;
+  run.dt = dt;
+  run.total_steps = 200;
+  run.time_unit = "1/gammadot";
+  run.time_scale = 0.25;
+  DiffusionObserver obs({2.0, 5, 4});
+  obs.set_schedule(1, 0.0);
+  test::FakeSink sink;
+  obs.begin(sys, run, sink);
+  NodePairList pairs;
+  for (std::int64_t step = 0; step <= run.total_steps; ++step) {
+    sys.set_step(step);
+    sys.set_time(step * dt);
+    StepView view{sys, pairs, run, nullptr, nullptr, nullptr, {}, 0.0};
+    if (obs.due(step, sys.time())) obs.sample(view, sink);
+  }
+  obs.finish(run, sink);
+  const auto& lag = sink.arrays.at("results/diffusion/lag_time");
+  EXPECT_EQ(lag.unit, "1/gammadot");
+  EXPECT_NEAR(lag.data.back(), 2.0, 1e-12);
+  EXPECT_NEAR(lag.data.front(), 1 * dt / 0.25, 1e-12);
+}

@@ -123,4 +123,36 @@ TEST(StressObserver, WritesEinsteinViscosityAndParts) {
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) EXPECT_NEAR(t[3 * i + j], t[3 * j + i], 1e-15);
   EXPECT_EQ(sink.series.at("observables/stress/eta_r").steps.size(), 8u);
+  // Units: viscosity ratios are dimensionless, N1/N2/Pi are stresses in mu*gammadot, raw
+  // stresses are in kT/a^3 (Brownian internal units: a = 1, kT = 1).
+  EXPECT_EQ(sink.scalar("results/stress/eta_r").unit, "1");
+  EXPECT_EQ(sink.scalar("results/stress/eta_hydrodynamic").unit, "1");
+  EXPECT_EQ(sink.scalar("results/stress/N1").unit, "mu*gammadot");
+  EXPECT_EQ(sink.scalar("results/stress/Pi_interparticle_kT").unit, "kT/a^3");
+  EXPECT_EQ(sink.arrays.at("results/stress/sigma_particle").unit, "kT/a^3");
+}
+
+TEST(StressObserver, NonBrownianStressUnitIsSixPiMuGammadot) {
+  // kT = 0: internal time is 1/gammadot (gammadot = 1), so raw stresses are in 6 pi mu gammadot.
+  Physics ph;
+  ph.kT = 0.0;
+  ph.shear_rate = 1.0;
+  System sys(std::make_shared<SphereShape>(), 8, 40.0, ph);
+  RunInfo run;
+  run.total_steps = 10;
+  run.dt = 1e-3;
+  NodePairList pairs;
+  StressObserver obs;
+  test::FakeSink sink;
+  obs.begin(sys, run, sink);
+  StressPieces p = dilute_spheres(8, 1.0);
+  for (int s = 0; s < 4; ++s) {
+    sys.set_step(s);
+    StepView view{sys, pairs, run, nullptr, nullptr, &p, {}, 0.0};
+    obs.sample(view, sink);
+  }
+  obs.finish(run, sink);
+  EXPECT_EQ(sink.arrays.at("results/stress/sigma_particle").unit, "6*pi*mu*gammadot");
+  EXPECT_EQ(sink.scalar("results/stress/eta_r").unit, "1");
+  EXPECT_EQ(sink.scalars.count("results/stress/shear_stress_kT"), 0u);
 }

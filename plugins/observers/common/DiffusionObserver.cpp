@@ -5,11 +5,14 @@
 #include <string>
 
 #include "ObserverOutput.hpp"
+#include "fldsim/error.hpp"
 
 namespace fldsim::observers {
 
 void DiffusionObserver::begin(const System& system, const RunInfo& run, ResultSink& out) {
   const std::int64_t every = std::max<std::int64_t>(1, this->every());
+  time_unit_ = run.time_unit;
+  time_scale_ = run.time_scale > 0.0 ? run.time_scale : 1.0;
   const double max_lag = config_.max_lag * run.time_scale;  // internal time
   const auto max_samples = std::max<std::int64_t>(1, std::llround(max_lag / (every * run.dt)));
   auto lags = DiffusionStatistics::log_spaced_lags(max_samples, config_.lags, every);
@@ -45,7 +48,7 @@ void DiffusionObserver::finish(const RunInfo&, ResultSink& out) {
   const std::size_t L = st.lags();
   std::vector<double> t(L), na(3 * L), na_e(3 * L), tot(3 * L), tot_e(3 * L), c1(L), c1e(L), c2(L), c2e(L);
   for (std::size_t j = 0; j < L; ++j) {
-    t[j] = st.lag_time(j);
+    t[j] = st.lag_time(j) / time_scale_;  // in the run's time unit, like max_lag
     for (int a = 0; a < 3; ++a) {
       na[3 * j + a] = st.msd_nonaffine(j, a).mean();
       na_e[3 * j + a] = st.msd_nonaffine(j, a).stderr_mean();
@@ -57,7 +60,12 @@ void DiffusionObserver::finish(const RunInfo&, ResultSink& out) {
     c2[j] = st.c2(j).mean();
     c2e[j] = st.c2(j).stderr_mean();
   }
-  write_vector(out, r + "lag_time", t, "a^2/D0", "lag times");
+  // Lag times in the run's time unit (as max_lag was given); MSDs stay in a^2 and the
+  // diffusivities in D0 = a^2/(a^2/D0) whatever that unit, so they compare across Pe.
+  write_vector(out, r + "lag_time", t, time_unit_, "lag times, in the run's time unit (" + time_unit_ + ")");
+  out.write_attribute("results/diffusion", "time_unit", time_unit_);
+  out.write_attribute("results/diffusion", "time_scale",
+                      std::to_string(time_scale_) + " a^2/D0 per " + time_unit_);
   out.write_array(r + "msd_nonaffine", {L, 3}, na.data(), "a^2", "shear-corrected MSD per axis (x, y, z)");
   out.write_array(r + "msd_nonaffine_stderr", {L, 3}, na_e.data(), "a^2", "SE by blocking over origins");
   out.write_array(r + "msd_total", {L, 3}, tot.data(), "a^2", "MSD of the total displacement per axis");
@@ -81,6 +89,22 @@ void DiffusionObserver::finish(const RunInfo&, ResultSink& out) {
     if (d2.count() > 0)
       write_blocked(out, r + "D_r_P2", d2, "D0/a^2", "rotational diffusivity from C2 = exp(-6 D_r t)");
   }
+}
+
+std::vector<double> DiffusionObserver::save_state() const {
+  StateWriter w;
+  w.put(stats_ ? 1.0 : 0.0);
+  if (stats_) stats_->save(w);
+  return w.take();
+}
+
+void DiffusionObserver::restore_state(const std::vector<double>& state) {
+  StateReader r(state, "diffusion");
+  const bool had = r.get() != 0.0;
+  if (had != bool(stats_))
+    throw Error("checkpoint state of observer diffusion does not match this run (was it skipped then?)");
+  if (stats_) stats_->restore(r);
+  r.finish();
 }
 
 }  // namespace fldsim::observers

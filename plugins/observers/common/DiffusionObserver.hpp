@@ -4,6 +4,7 @@
 #pragma once
 
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "DiffusionStatistics.hpp"
@@ -23,6 +24,8 @@ class DiffusionObserver : public Observer {
   void begin(const System& system, const RunInfo& run, ResultSink& out) override;
   void sample(const StepView& view, ResultSink& out) override;
   void finish(const RunInfo& run, ResultSink& out) override;
+  std::vector<double> save_state() const override;
+  void restore_state(const std::vector<double>& state) override;
   const DiffusionStatistics* statistics() const { return stats_.get(); }
 
  private:
@@ -30,6 +33,8 @@ class DiffusionObserver : public Observer {
   std::unique_ptr<DiffusionStatistics> stats_;
   std::vector<Vec3> directors_;
   bool anisotropic_ = true;
+  std::string time_unit_ = "a^2/D0";  // the run's time unit (RunInfo::time_unit)
+  double time_scale_ = 1.0;           // internal time per run time unit
 };
 
 }  // namespace fldsim::observers

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "fldsim/error.hpp"
+
 namespace fldsim::observers {
 
 std::vector<std::int64_t> DiffusionStatistics::log_spaced_lags(std::int64_t max_units, int count,
@@ -134,6 +136,65 @@ BlockAverage DiffusionStatistics::d_rot(int l, double floor) const {
     if (stt > 0.0) b.add(-st / (rate * stt));
   }
   return b;
+}
+
+namespace {
+void put_vec3s(StateWriter& w, const std::vector<Vec3>& v) {
+  w.put(double(v.size()));
+  for (const Vec3& x : v) w.put(x[0]).put(x[1]).put(x[2]);
+}
+void get_vec3s(StateReader& r, std::vector<Vec3>& v) {
+  if (std::size_t(r.get()) != v.size())
+    throw Error("checkpoint state of observer diffusion has another body count");
+  for (Vec3& x : v)
+    for (int c = 0; c < 3; ++c) x[c] = r.get();  // in order (function arguments are not)
+}
+}  // namespace
+
+void DiffusionStatistics::save(StateWriter& w) const {
+  w.put(double(origins_.size())).put(double(lag_steps_.size()));
+  for (const Origin& o : origins_) {
+    w.put(o.active ? 1.0 : 0.0).put(double(o.step));
+    put_vec3s(w, o.nonaffine);
+    put_vec3s(w, o.total);
+    put_vec3s(w, o.directors);
+    for (const auto& v : o.values)
+      for (double x : v) w.put(x);
+  }
+  w.put(double(last_origin_step_)).put(any_origin_ ? 1.0 : 0.0);
+  for (std::size_t j = 0; j < lag_steps_.size(); ++j) {
+    for (int a = 0; a < 3; ++a) {
+      msd_na_[j][a].save(w);
+      msd_tot_[j][a].save(w);
+    }
+    c1_[j].save(w);
+    c2_[j].save(w);
+  }
+}
+
+void DiffusionStatistics::restore(StateReader& r) {
+  if (std::size_t(r.get()) != origins_.size() || std::size_t(r.get()) != lag_steps_.size())
+    throw Error(
+        "checkpoint state of observer diffusion has other lags or origins (were its parameters changed?)");
+  for (Origin& o : origins_) {
+    o.active = r.get() != 0.0;
+    o.step = std::int64_t(r.get());
+    get_vec3s(r, o.nonaffine);
+    get_vec3s(r, o.total);
+    get_vec3s(r, o.directors);
+    for (auto& v : o.values)
+      for (double& x : v) x = r.get();
+  }
+  last_origin_step_ = std::int64_t(r.get());
+  any_origin_ = r.get() != 0.0;
+  for (std::size_t j = 0; j < lag_steps_.size(); ++j) {
+    for (int a = 0; a < 3; ++a) {
+      msd_na_[j][a].restore(r);
+      msd_tot_[j][a].restore(r);
+    }
+    c1_[j].restore(r);
+    c2_[j].restore(r);
+  }
 }
 
 }  // namespace fldsim::observers

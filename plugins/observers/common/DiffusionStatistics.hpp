@@ -47,6 +47,9 @@ class DiffusionStatistics {
   // mean C_l exceeds `floor` (l = 1 or 2).
   BlockAverage d_rot(int l, double floor = 0.1) const;
   std::size_t long_lag_start() const;  // index of the lag nearest half the largest lag
+  // Checkpoint state: origins in flight and the per-origin series (restore needs the same lags).
+  void save(StateWriter& w) const;
+  void restore(StateReader& r);
 
  private:
   struct Origin {

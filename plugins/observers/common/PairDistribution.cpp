@@ -144,4 +144,17 @@ std::vector<double> PairDistribution::g_map_stderr(Projection p) const {
   return g;
 }
 
+void PairDistribution::save(StateWriter& w) const {
+  w.put(radial_);
+  for (const auto& m : maps_) w.put(m);
+  w.put(double(samples_)).put(norm_density_volume_);
+}
+
+void PairDistribution::restore(StateReader& r) {
+  r.get_into(radial_);
+  for (auto& m : maps_) r.get_into(m);
+  samples_ = std::size_t(r.get());
+  norm_density_volume_ = r.get();
+}
+
 }  // namespace fldsim::observers

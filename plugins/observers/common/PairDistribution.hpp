@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "fldsim/box.hpp"
+#include "fldsim/observer_state.hpp"
 
 namespace fldsim::observers {
 
@@ -32,6 +33,9 @@ class PairDistribution {
   // Throws std::invalid_argument when range or slab exceed half the box edge.
   void check_box(const LeesEdwardsBox& box) const;
   void add_sample(const std::vector<Vec3>& positions, const LeesEdwardsBox& box);
+  // Checkpoint state (exact restart); restore needs the same bins and projections.
+  void save(StateWriter& w) const;
+  void restore(StateReader& r);
 
   const PairDistributionConfig& config() const { return config_; }
   int map_bins() const { return config_.bins; }

@@ -50,4 +50,16 @@ void PairDistributionObserver::finish(const RunInfo&, ResultSink& out) {
   out.write_attribute("results/pair_distribution", "samples", std::to_string(pd_.samples()));
 }
 
+std::vector<double> PairDistributionObserver::save_state() const {
+  StateWriter w;
+  pd_.save(w);
+  return w.take();
+}
+
+void PairDistributionObserver::restore_state(const std::vector<double>& state) {
+  StateReader r(state, "pair_distribution");
+  pd_.restore(r);
+  r.finish();
+}
+
 }  // namespace fldsim::observers

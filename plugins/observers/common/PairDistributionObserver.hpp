@@ -13,6 +13,8 @@ class PairDistributionObserver : public Observer {
   void begin(const System& system, const RunInfo& run, ResultSink& out) override;
   void sample(const StepView& view, ResultSink& out) override;
   void finish(const RunInfo& run, ResultSink& out) override;
+  std::vector<double> save_state() const override;
+  void restore_state(const std::vector<double>& state) override;
   const PairDistribution& distribution() const { return pd_; }
 
  private:

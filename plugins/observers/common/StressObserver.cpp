@@ -37,14 +37,21 @@ void StressObserver::sample(const StepView& view, ResultSink& out) {
   ++samples_;
   const auto step = view.system.step();
   const double t = view.system.time();
-  // Internal stress unit: 6 pi mu a = 1, a = 1, time a^2/D0, so kT/a^3 when kT = 1.
   const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> row_major = parts[kParticleTotal];
-  out.append_sample("observables/stress/particle_stress", step, t, {3, 3}, row_major.data(),
-                    "internal (kT/a^3 for kT = 1)");
+  out.append_sample("observables/stress/particle_stress", step, t, {3, 3}, row_major.data(), stress_unit());
   if (shear_rate_ != 0.0) {
     const double eta = bulk.relative_viscosity(*view.stress);
     out.append_sample("observables/stress/eta_r", step, t, {}, &eta, "1");
   }
+}
+
+// Internal units (system.hpp): a = 1, 6 pi mu a = 1, time t0 = a^2/D0 for a Brownian run (kT = 1),
+// so the stress unit 6 pi mu a^2 / (a^2 t0) is kT/a^3; a non-Brownian run has gammadot = 1, so
+// t0 = 1/gammadot and the unit is 6 pi mu gammadot. With neither, only "6*pi*mu/t0" is known.
+std::string StressObserver::stress_unit() const {
+  if (kT_ > 0.0) return "kT/a^3";
+  if (shear_rate_ != 0.0) return "6*pi*mu*gammadot";
+  return "6*pi*mu/t0 (internal time unit t0)";
 }
 
 Eigen::Matrix3d StressObserver::mean_tensor(int part) const {
@@ -61,7 +68,7 @@ void StressObserver::finish(const RunInfo&, ResultSink& out) {
     if (p == kBrownian && sum_[p].isZero(0.0)) continue;  // not provided (see below)
     const Eigen::Matrix3d m = mean_tensor(p);             // symmetric expected; written row-major
     const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> rm = m;
-    out.write_array(r + "sigma_" + kStressPartNames[p], {3, 3}, rm.data(), "internal (kT/a^3 for kT = 1)",
+    out.write_array(r + "sigma_" + kStressPartNames[p], {3, 3}, rm.data(), stress_unit(),
                     std::string("mean ") + kStressPartNames[p] + " stress");
   }
   // A part the core never provided (all samples exactly zero, e.g. no Brownian stress from the
@@ -82,10 +89,12 @@ void StressObserver::finish(const RunInfo&, ResultSink& out) {
       const bool needs_flow = q < 3;
       if (needs_flow && shear_rate_ == 0.0) continue;
       if (shear_rate_ != 0.0) {
-        // In units of mu gammadot; the full relative viscosity adds the solvent's 1.
+        // Scaled by mu gammadot. The shear stress so scaled is a viscosity ratio (dimensionless:
+        // eta_r adds the solvent's 1, eta_<part> is that part's share); N1, N2 and Pi stay
+        // stresses, expressed in the stress unit mu*gammadot.
         const double shift = (q == 0 && p == kParticleTotal) ? 1.0 : 0.0;
         const std::string name = (q == 0 && p == kParticleTotal) ? "eta_r" : names[q] + suffix;
-        write_blocked(out, r + name, series_[p][q], "mu*gammadot", what[q] + part,
+        write_blocked(out, r + name, series_[p][q], q == 0 ? "1" : "mu*gammadot", what[q] + part,
                       1.0 / (viscosity_ * shear_rate_), shift);
       }
       if (kT_ > 0.0) {
@@ -97,10 +106,28 @@ void StressObserver::finish(const RunInfo&, ResultSink& out) {
         else
           write_blocked(out, r + name, series_[p][q], "kT/a^3", what[q] + part, 1.0 / kT_);
       } else if (shear_rate_ == 0.0) {
-        write_blocked(out, r + names[q] + suffix, series_[p][q], "internal", what[q] + part);
+        write_blocked(out, r + names[q] + suffix, series_[p][q], stress_unit(), what[q] + part);
       }
     }
   }
+}
+
+std::vector<double> StressObserver::save_state() const {
+  StateWriter w;
+  for (const auto& part : series_)
+    for (const auto& q : part) q.save(w);
+  for (const auto& m : sum_) w.put(m);
+  w.put(double(samples_));
+  return w.take();
+}
+
+void StressObserver::restore_state(const std::vector<double>& state) {
+  StateReader r(state, "stress");
+  for (auto& part : series_)
+    for (auto& q : part) q.restore(r);
+  for (auto& m : sum_) r.get_into(m);
+  samples_ = std::size_t(r.get());
+  r.finish();
 }
 
 }  // namespace fldsim::observers

@@ -2,6 +2,8 @@
 // split into hydrodynamic, interparticle and Brownian parts (formulas in BulkStress.hpp).
 #pragma once
 
+#include <string>
+
 #include "BlockAverage.hpp"
 #include "BulkStress.hpp"
 #include "fldsim/observer.hpp"
@@ -15,10 +17,14 @@ class StressObserver : public Observer {
   void begin(const System& system, const RunInfo& run, ResultSink& out) override;
   void sample(const StepView& view, ResultSink& out) override;
   void finish(const RunInfo& run, ResultSink& out) override;
+  std::vector<double> save_state() const override;
+  void restore_state(const std::vector<double>& state) override;
 
   // Per-sample series in internal units: [part][quantity], quantity 0..3 = shear, N1, N2, Pi.
   const BlockAverage& series(int part, int quantity) const { return series_[part][quantity]; }
   Eigen::Matrix3d mean_tensor(int part) const;
+  // Unit of the raw (internal) stress values: kT/a^3 when Brownian (kT = 1).
+  std::string stress_unit() const;
 
  private:
   double volume_ = 1.0, viscosity_ = 1.0, shear_rate_ = 0.0, kT_ = 0.0;

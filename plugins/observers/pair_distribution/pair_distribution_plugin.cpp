@@ -1,4 +1,5 @@
 // Plugin `pair_distribution`: registers PairDistributionObserver (plugins/observers/common).
+#include <algorithm>
 #include <sstream>
 
 #include "PairDistributionObserver.hpp"
@@ -16,7 +17,10 @@ class PairDistributionPlugin : public fldsim::observers::PairDistributionObserve
     s.integer("bins", 100, "", "map cells per axis; g(r) has bins/2 shells").at_least(2);
     s.number("slab_half", 1.0, "a", "maps average over |third coordinate| < slab_half (paper: a)")
         .greater(0.0);
-    s.text("projections", std::string("xy"), "comma-separated maps to build: xy (front view), xz, yz");
+    // A text value until the parameter schema has a list-of-choices type: YAML `[xy, xz]` is a
+    // sequence, which ParamSchema::text refuses, so the list is written "xy, xz" (or quoted "[xy, xz]").
+    s.text("projections", std::string("xy"),
+           "maps to build, a comma-separated list of distinct xy (front view), xz, yz, e.g. \"xy, xz, yz\"");
   }
   explicit PairDistributionPlugin(const fldsim::Params& p) : PairDistributionObserver(config(p)) {}
 
@@ -32,15 +36,20 @@ class PairDistributionPlugin : public fldsim::observers::PairDistributionObserve
       if (ch == ',' || ch == '[' || ch == ']') ch = ' ';
     std::istringstream in(list);
     for (std::string name; in >> name;) {
+      Projection proj;
       if (name == "xy")
-        c.projections.push_back(Projection::XY);
+        proj = Projection::XY;
       else if (name == "xz")
-        c.projections.push_back(Projection::XZ);
+        proj = Projection::XZ;
       else if (name == "yz")
-        c.projections.push_back(Projection::YZ);
+        proj = Projection::YZ;
       else
-        p.fail("projections", "unknown projection '" + name + "' (expected xy, xz or yz)");
+        p.fail("projections", "unknown projection '" + name + "' (expected a list of xy, xz, yz)");
+      if (std::find(c.projections.begin(), c.projections.end(), proj) != c.projections.end())
+        p.fail("projections", "projection '" + name + "' listed twice");
+      c.projections.push_back(proj);
     }
+    if (c.projections.empty()) p.fail("projections", "expected at least one of xy, xz, yz, got none");
     return c;
   }
 };
