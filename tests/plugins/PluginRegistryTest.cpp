@@ -52,7 +52,8 @@ TEST(PluginRegistry, LoadsTheGoodFixtureAndRecordsEachFailure) {
   // Files are scanned in name order, so failures come in that order.
   const std::vector<std::string> expected = {
       fixture("fixture_api99") +
-          ": plugin API 99.0 does not match this fldsim (API 1.0); rebuild the plugin against this fldsim",
+          ": plugin API 99.0 does not match this fldsim (API " FLDSIM_STR(FLDSIM_API_MAJOR) "." FLDSIM_STR(
+              FLDSIM_API_MINOR) "); rebuild the plugin against this fldsim",
       fixture("fixture_badkind") +
           ": unknown plugin kind 'widget' (expected shape, hydro, force or observer)",
       fixture("fixture_badtag") +
@@ -159,7 +160,8 @@ TEST(PluginRegistry, FindingAFailedPluginMentionsTheFailure) {
       plugin_error([&] { registry.find("force", "fixture_api99"); }),
       "no force plugin named 'fixture_api99'; available: fixture_scaler; searched: " + kDir +
           "; a candidate failed: " + fixture("fixture_api99") +
-          ": plugin API 99.0 does not match this fldsim (API 1.0); rebuild the plugin against this fldsim");
+          ": plugin API 99.0 does not match this fldsim (API " FLDSIM_STR(FLDSIM_API_MAJOR) "." FLDSIM_STR(
+              FLDSIM_API_MINOR) "); rebuild the plugin against this fldsim");
 }
 
 // Whether the dynamic loader still has `file` mapped (RTLD_NOLOAD opens nothing new).
