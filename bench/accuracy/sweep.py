@@ -1,0 +1,102 @@
+"""The settings of the time-against-error sweep: one parameter at a time around the defaults,
+a few combined, and the tight reference.
+
+A setting is (family, dt, tolerance, cutoff). dt is in the scene's time unit (paper = 1/gammadot
+at Pe = 10, and 1/gammadot in the non-Brownian runs), tolerance is the relative CG residual of
+hydro.tolerance, cutoff the lubrication cutoff hydro.cutoff in units of a.
+"""
+from dataclasses import dataclass
+
+# The defaults under test: dt of examples/quickstart.yaml, the fld plugin's tolerance and cutoff.
+DEFAULT_DT = 1.0e-3
+DEFAULT_TOLERANCE = 1.0e-6
+DEFAULT_CUTOFF = 2.5
+
+
+@dataclass(frozen=True)
+class Setting:
+    family: str  # reference, default, dt, tolerance, cutoff, combined
+    dt: float
+    tolerance: float
+    cutoff: float
+
+    @property
+    def label(self):
+        return f"dt={self.dt:g} tol={self.tolerance:g} cut={self.cutoff:g}"
+
+    @property
+    def key(self):
+        """A file-name-safe identifier."""
+        return f"dt{self.dt:g}_tol{self.tolerance:g}_cut{self.cutoff:g}".replace("+", "")
+
+    def overrides(self):
+        return [f"run.dt={self.dt!r}", f"hydro.tolerance={self.tolerance!r}",
+                f"hydro.cutoff={self.cutoff!r}"]
+
+    @property
+    def is_default(self):
+        return (self.dt, self.tolerance, self.cutoff) == (DEFAULT_DT, DEFAULT_TOLERANCE, DEFAULT_CUTOFF)
+
+
+@dataclass(frozen=True)
+class Plan:
+    """Everything one invocation runs: the settings of each kind of run and their lengths.
+
+    `reference` is the tight reference of every comparison (smallest dt, tolerance 1e-10,
+    cutoff 2.9). The cutoff is a model parameter of FLD (R_0(phi) was fitted with the LAMMPS
+    cutoffs), not a convergence parameter, so the deterministic runs also have a
+    `numerical_reference` at the default cutoff: the error of the settings at that cutoff against
+    it is the numerical error of dt and tolerance alone.
+    """
+    reference: Setting
+    numerical_reference: Setting
+    deterministic: list  # settings compared with both references
+    brownian_reference: Setting
+    brownian: list
+    strain: float  # deterministic runs: compare positions after this strain
+    brownian_duration: float  # Brownian runs: length, in strain units (Pe = 10, paper units)
+    brownian_start: float  # Brownian runs: observers average from this time on
+
+
+def _around_defaults(dts, tolerances, cutoffs, combined):
+    out = [Setting("default", DEFAULT_DT, DEFAULT_TOLERANCE, DEFAULT_CUTOFF)]
+    out += [Setting("dt", dt, DEFAULT_TOLERANCE, DEFAULT_CUTOFF) for dt in dts]
+    out += [Setting("tolerance", DEFAULT_DT, tol, DEFAULT_CUTOFF) for tol in tolerances]
+    out += [Setting("cutoff", DEFAULT_DT, DEFAULT_TOLERANCE, cut) for cut in cutoffs]
+    out += [Setting("combined", *c) for c in combined]
+    return out
+
+
+TIGHT_TOLERANCE = 1e-10
+TIGHT_CUTOFF = 2.9
+
+
+def _plan(dt_ref, deterministic, brownian_dt_ref, brownian, **lengths):
+    return Plan(reference=Setting("reference", dt_ref, TIGHT_TOLERANCE, TIGHT_CUTOFF),
+                numerical_reference=Setting("numerical reference", dt_ref, TIGHT_TOLERANCE, DEFAULT_CUTOFF),
+                deterministic=deterministic,
+                brownian_reference=Setting("reference", brownian_dt_ref, TIGHT_TOLERANCE, TIGHT_CUTOFF),
+                brownian=brownian, **lengths)
+
+
+def full_plan():
+    deterministic = _around_defaults(
+        dts=[8e-3, 4e-3, 2e-3, 5e-4],
+        tolerances=[1e-2, 1e-3, 1e-4, 1e-5, 1e-8],
+        cutoffs=[2.1, 2.2, 2.3, 2.7, 2.9],
+        combined=[(4e-3, 1e-3, 2.5), (2e-3, 1e-4, 2.5), (2e-3, 1e-3, 2.7), (4e-3, 1e-4, 2.3),
+                  (1e-3, 1e-4, 2.7), (5e-4, 1e-8, 2.7)])
+    # Brownian errors are limited by sampling, not by the setting: the reference takes the smallest
+    # dt of the Brownian settings (a smaller one would cost minutes and not be seen within the SE).
+    brownian = _around_defaults(dts=[4e-3, 2e-3], tolerances=[1e-3], cutoffs=[2.2, 2.9],
+                                combined=[(2e-3, 1e-4, 2.5)])
+    return _plan(2.5e-4, deterministic, 1e-3, brownian, strain=1.0, brownian_duration=8.0,
+                 brownian_start=1.0)
+
+
+def quick_plan():
+    deterministic = _around_defaults(dts=[4e-3, 2e-3], tolerances=[1e-3, 1e-4], cutoffs=[2.2, 2.7],
+                                     combined=[(2e-3, 1e-4, 2.5)])
+    brownian = _around_defaults(dts=[4e-3], tolerances=[], cutoffs=[], combined=[])
+    return _plan(2.5e-4, deterministic, 1e-3, brownian, strain=0.5, brownian_duration=4.0,
+                 brownian_start=1.0)
