@@ -61,13 +61,19 @@ def series(h5, path):
     return np.asarray(g["time"][()]), np.asarray(g["value"][()])
 
 
+# Kumar & Higdon's names of the symmetric dicolloids (a = b) by their centre distance c/a.
+DICOLLOID_NAMES = {0.2: "homonuclear", 1.0: "fused dumbbell"}
+
+
 def shape_label(h5):
-    """A readable shape name; dicolloids carry their c/a (0.2 homonuclear, 1 fused dumbbell)."""
+    """A readable shape name; dicolloids carry their c/a and, for the paper's two, its name."""
     shape = parameter(h5, "shape", "unknown")
     c = parameter(h5, "shape_c")
     if c is not None:
         try:
-            return f"{shape} c/a={float(c):g}"
+            cv = float(c)
         except ValueError:
             return f"{shape} c={c}"
+        named = DICOLLOID_NAMES.get(round(cv, 6)) if shape == "dicolloid" else None
+        return f"{named} (c/a={cv:g})" if named else f"{shape} c/a={cv:g}"
     return shape

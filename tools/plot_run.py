@@ -108,6 +108,8 @@ def plot_diffusion(h5, title, out, written, skipped):
     if t is None or msd is None:
         skipped.append("MSD (no diffusion results)")
         return
+    # Lag times are in the run's time unit (a^2/D0 or 1/gammadot), as the unit attribute says.
+    unit = fr.text(h5[DF + "lag_time"].attrs.get("unit", "a^2/D0"))
     fig, ax = plt.subplots(figsize=(5, 3.8))
     for a, name in enumerate("xyz"):
         ax.errorbar(t, msd[:, a], yerr=None if err is None else err[:, a], marker="o", ms=3, lw=1,
@@ -117,7 +119,7 @@ def plot_diffusion(h5, title, out, written, skipped):
         ax.plot(t, tot[:, 0], "k--", lw=0.8, label="x total")
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_xlabel(r"t ($a^2/D_0$)")
+    ax.set_xlabel(f"lag t ({unit})")
     ax.set_ylabel(r"MSD ($a^2$)")
     ax.legend(fontsize=7)
     ax.set_title(title, fontsize=9)
@@ -129,7 +131,7 @@ def plot_diffusion(h5, title, out, written, skipped):
         if c2 is not None:
             ax.plot(t, c2, "s-", ms=3, label=r"$\langle P_2\rangle$")
         ax.set_xscale("log")
-        ax.set_xlabel(r"t ($a^2/D_0$)")
+        ax.set_xlabel(f"lag t ({unit})")
         ax.legend(fontsize=8)
         dr = fr.scalar(h5, DF + "D_r")
         ax.set_title(title + (f"  D_r = {dr[0]:.4g} ± {dr[1]:.2g}" if dr else ""), fontsize=9)
