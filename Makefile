@@ -5,7 +5,7 @@ BUILD ?= build
 JOBS ?= $(shell nproc)
 FLDSIM = $(BUILD)/bin/fldsim
 
-.PHONY: all deps configure build demo test bench figures format clean
+.PHONY: all deps configure build demo test bench figures docs format clean
 
 all: build
 
@@ -38,6 +38,9 @@ bench: build
 
 figures: build
 	@bash examples/paper/quick/run_quick_study.sh $(BUILD)
+
+docs: build
+	@bash tools/plugin-docs.sh $(BUILD)
 
 format:
 	@clang-format -i $$(git ls-files '*.cpp' '*.hpp')

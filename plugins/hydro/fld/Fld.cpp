@@ -32,5 +32,5 @@ class Fld : public fldsim::hydro::ResistanceModel {
 
 }  // namespace
 
-FLDSIM_PLUGIN(hydro, Fld, "fld", "1.0.0",
+FLDSIM_PLUGIN(hydro, Fld, "fld", "1.1.0",
               "Fast Lubrication Dynamics: lubrication plus R_0(phi) (Kumar & Higdon 2010)")

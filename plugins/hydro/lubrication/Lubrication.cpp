@@ -21,5 +21,5 @@ class Lubrication : public fldsim::hydro::ResistanceModel {
 
 }  // namespace
 
-FLDSIM_PLUGIN(hydro, Lubrication, "lubrication", "1.0.0",
+FLDSIM_PLUGIN(hydro, Lubrication, "lubrication", "1.1.0",
               "pairwise lubrication plus isolated-sphere drag (no phi correction)")
