@@ -84,6 +84,17 @@ TEST(ExperimentRun, BadValueIsOneLineWithFileLineKeyAndExitCode2) {
   EXPECT_EQ(c.output, (d / "e.yaml").string() + ":10:11: run.dt: expected a number > 0, got -1\n");
 }
 
+TEST(ExperimentRun, OverrideOfAListByNameIsAOneLineError) {
+  const fs::path d = scratch("override");
+  write(d / "e.yaml", experiment((d / "out.h5").string(), 0.02));
+  const Command c = run("check " + (d / "e.yaml").string() + " --set forces.x=1");
+  EXPECT_EQ(c.code, 2);
+  EXPECT_EQ(c.output, "--set forces.x=1: 'x' addresses a list: expected an index 0..0\n");
+  const Command far = run("check " + (d / "e.yaml").string() + " --set forces.3.prefactor=1");
+  EXPECT_EQ(far.code, 2);
+  EXPECT_EQ(far.output, "--set forces.3.prefactor=1: index 3 out of range (the list has 1 entries)\n");
+}
+
 TEST(ExperimentRun, ExistingResultIsNotOverwritten) {
   const fs::path d = scratch("exists");
   write(d / "out.h5", "precious");

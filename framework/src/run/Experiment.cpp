@@ -82,22 +82,32 @@ void apply_override(YAML::Node root, const std::string& item) {
   std::vector<std::string> keys;
   std::stringstream ss(path);
   for (std::string k; std::getline(ss, k, '.');) keys.push_back(k);
+  // A list (observers, forces) is addressed by its index: observers.2.every=10.
+  auto index = [&](const std::string& key, std::size_t size) {
+    const bool digits = !key.empty() && key.find_first_not_of("0123456789") == std::string::npos;
+    if (!digits)
+      throw ConfigError("--set " + item + ": '" + key + "' addresses a list: expected an index 0.." +
+                        std::to_string(size ? size - 1 : 0));
+    const std::size_t idx = std::stoul(key);
+    if (idx >= size)
+      throw ConfigError("--set " + item + ": index " + key + " out of range (the list has " +
+                        std::to_string(size) + " entries)");
+    return idx;
+  };
   // Walk with reset() copies: yaml-cpp nodes are handles, assignment would overwrite.
   YAML::Node cur;
   cur.reset(root);
   for (std::size_t i = 0; i + 1 < keys.size(); ++i) {
     YAML::Node next;
     if (cur.IsSequence()) {
-      const std::size_t idx = std::stoul(keys[i]);
-      if (idx >= cur.size()) throw ConfigError("--set " + item + ": index " + keys[i] + " out of range");
-      next.reset(cur[idx]);
+      next.reset(cur[index(keys[i], cur.size())]);
     } else {
       next.reset(cur[keys[i]]);
     }
     cur.reset(next);
   }
   if (cur.IsSequence())
-    cur[std::stoul(keys.back())] = value;
+    cur[index(keys.back(), cur.size())] = value;
   else
     cur[keys.back()] = value;
 }
