@@ -135,15 +135,21 @@ void Hdf5ResultSink::write_parameters(const std::string& resolved_yaml,
   }
 }
 
+H5::Group Hdf5ResultSink::parent_of_new(const std::string& path, std::string& leaf) {
+  std::string parent;
+  io::split_path(path, parent, leaf);
+  H5::Group g = io::ensure_group(file_.openGroup("/"), parent);
+  if (H5Lexists(g.getId(), leaf.c_str(), H5P_DEFAULT) > 0)
+    throw Error(part_path_ + ": " + path + " written twice");
+  return g;
+}
+
 void Hdf5ResultSink::write_scalar(const std::string& path, double value, double stderr_value,
                                   const std::string& unit, const std::string& description) {
   check_open("write_scalar");
   try {
-    std::string parent, leaf;
-    io::split_path(path, parent, leaf);
-    H5::Group g = io::ensure_group(file_.openGroup("/"), parent);
-    if (H5Lexists(g.getId(), leaf.c_str(), H5P_DEFAULT) > 0)
-      throw Error(part_path_ + ": " + path + " written twice");
+    std::string leaf;
+    H5::Group g = parent_of_new(path, leaf);
     H5::DataSet d = g.createDataSet(leaf, H5::PredType::NATIVE_DOUBLE, H5::DataSpace(H5S_SCALAR));
     d.write(&value, H5::PredType::NATIVE_DOUBLE);
     io::set_string_attribute(d, "unit", unit);
@@ -159,11 +165,8 @@ void Hdf5ResultSink::write_array(const std::string& path, const std::vector<std:
                                  const std::string& description) {
   check_open("write_array");
   try {
-    std::string parent, leaf;
-    io::split_path(path, parent, leaf);
-    H5::Group g = io::ensure_group(file_.openGroup("/"), parent);
-    if (H5Lexists(g.getId(), leaf.c_str(), H5P_DEFAULT) > 0)
-      throw Error(part_path_ + ": " + path + " written twice");
+    std::string leaf;
+    H5::Group g = parent_of_new(path, leaf);
     const std::vector<hsize_t> dims(shape.begin(), shape.end());
     H5::DataSpace space =
         dims.empty() ? H5::DataSpace(H5S_SCALAR) : H5::DataSpace(static_cast<int>(dims.size()), dims.data());

@@ -69,6 +69,9 @@ class FLDSIM_VISIBLE Hdf5ResultSink : public ResultSink {
   TimeSeries& time_series(const std::string& path, const std::vector<std::size_t>& shape,
                           const std::string& unit);
   void check_open(const char* what) const;
+  // The group that will hold the new dataset at `path` (created as needed); its last component
+  // goes to `leaf`. A path written before is refused.
+  H5::Group parent_of_new(const std::string& path, std::string& leaf);
   // Apply `fn` to the group or dataset at `path` (a group is created if nothing is there).
   template <class Fn>
   void on_object(const std::string& path, Fn&& fn);
