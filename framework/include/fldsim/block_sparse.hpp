@@ -36,6 +36,14 @@ class FLDSIM_VISIBLE BlockSparseMatrix {
   // The compressed upper pattern: blocks row_start()[i] .. row_start()[i+1] of row i, columns col().
   const std::vector<std::int64_t>& row_start() const { return row_start_; }
   const std::vector<std::uint32_t>& col() const { return col_; }
+  // The transposed index: for column j, col_start()[j] .. col_start()[j+1] - 1 list the stored
+  // blocks (i, j) by increasing i: their index in the upper storage (by_col) and their row i.
+  const std::vector<std::int64_t>& col_start() const { return col_start_; }
+  const std::vector<std::int64_t>& by_col() const { return by_col_; }
+  const std::vector<std::uint32_t>& by_col_row() const { return by_col_row_; }
+  // Changes at every set_pattern() (unique across matrices): lets a preconditioner redo its
+  // pattern analysis only when the pattern changed.
+  std::uint64_t pattern_id() const { return pattern_id_; }
 
  private:
   std::vector<Mat6> diag_;
@@ -47,25 +55,48 @@ class FLDSIM_VISIBLE BlockSparseMatrix {
   std::vector<std::int64_t> col_start_;
   std::vector<std::int64_t> by_col_;
   std::vector<std::uint32_t> by_col_row_;
+  std::uint64_t pattern_id_ = 0;
 };
 
 // Block incomplete Cholesky IC(0): A ~ U^T U with U block upper triangular on A's own pattern
 // (fill outside it is dropped). Exact for an isolated pair of bodies, so it removes the 1/gap
 // squeeze coupling of near-contact pairs that block Jacobi leaves to the iterations. Applying it
-// is two sequential block triangular sweeps (about one matrix-vector product). Factorisation is
-// right-looking by block rows; if a pivot block is not positive definite (IC(0) of a general SPD
-// matrix can break down) factorize() returns false and the caller falls back to block Jacobi.
+// is two block triangular sweeps (about one matrix-vector product). Both the factorisation and the
+// sweeps are row-oriented ("gather": row i reads only finished rows), scheduled by dependency
+// levels computed once per pattern: rows of one level are independent and run in parallel, and
+// every row is summed in the same fixed order whatever the thread count, so the result does not
+// depend on it. If a pivot block is not positive definite (IC(0) of a general SPD matrix can break
+// down) factorize() returns false and the caller falls back to block Jacobi.
 class FLDSIM_VISIBLE BlockIncompleteCholesky {
  public:
   bool factorize(const BlockSparseMatrix& A);
   // z = (U^T U)^-1 r.
   void apply(const double* r, double* z) const;
+  // Dependency levels of the forward and backward sweeps (each level is one parallel step).
+  std::size_t forward_levels() const { return forward_.levels(); }
+  std::size_t backward_levels() const { return backward_.levels(); }
 
  private:
+  // Rows row[level_start[l]] .. row[level_start[l+1] - 1] form level l, ascending within it.
+  struct Levels {
+    std::vector<std::int64_t> level_start;
+    std::vector<std::uint32_t> row;
+    std::size_t levels() const { return level_start.empty() ? 0 : level_start.size() - 1; }
+  };
+  void analyse(const BlockSparseMatrix& A);
+  bool factor_row(const BlockSparseMatrix& A, std::size_t i);
+  void forward_row(std::size_t i, const double* r, double* z) const;
+  void backward_row(std::size_t i, double* z) const;
+
+  std::uint64_t pattern_id_ = 0;
+  // A's upper pattern by rows and its transposed index (see BlockSparseMatrix).
+  std::vector<std::int64_t> row_start_, col_start_, by_col_;
+  std::vector<std::uint32_t> col_, by_col_row_;
+  Levels forward_, backward_;
   std::vector<Mat6> inv_lower_;  // (U_ii^T)^-1, lower triangular
   std::vector<Mat6> upper_;      // U_ij, i < j, laid out as A's upper blocks
-  std::vector<std::int64_t> row_start_;
-  std::vector<std::uint32_t> col_;
+  std::vector<Mat6> lower_;      // U_ki laid out as A's transposed index (by_col); threads > 1
+  bool gathered_ = false;        // lower_ holds the current factor
 };
 
 enum class Preconditioner { BlockJacobi, IncompleteCholesky };
@@ -88,10 +119,13 @@ class FLDSIM_VISIBLE BlockPCG {
 
  private:
   void precondition(const std::vector<double>& in, std::vector<double>& out) const;
+  // Dot product as a sum of fixed-size chunks, added in chunk order: reproducible for any
+  // thread count.
+  double dot(const std::vector<double>& a, const std::vector<double>& b);
   Preconditioner kind_, active_ = Preconditioner::BlockJacobi;
   std::vector<Mat6> inv_diag_;
   BlockIncompleteCholesky ic_;
-  std::vector<double> r_, z_, p_, q_;
+  std::vector<double> r_, z_, p_, q_, partial_;
 };
 
 }  // namespace fldsim

@@ -1,4 +1,7 @@
 #include <Eigen/Cholesky>
+#include <algorithm>
+#include <atomic>
+#include <omp.h>
 
 #include "fldsim/block_sparse.hpp"
 
@@ -18,54 +21,162 @@ Mat6 lower_inverse(const Mat6& L) {
   }
   return X;
 }
+
+// Level of each row (0 for rows without dependencies, else 1 + the deepest dependency), visiting
+// rows so that dependencies come first; then the positions grouped by level, rows ascending.
+template <class Dependencies>
+void schedule(std::size_t n, bool descending, Dependencies&& each_dependency, std::vector<std::int64_t>& level_start,
+              std::vector<std::uint32_t>& row) {
+  std::vector<std::uint32_t> level(n, 0);
+  for (std::size_t t = 0; t < n; ++t) {
+    const std::size_t i = descending ? n - 1 - t : t;
+    each_dependency(i, [&](std::size_t k) { level[i] = std::max(level[i], level[k] + 1); });
+  }
+  const std::uint32_t top = n == 0 ? 0 : *std::max_element(level.begin(), level.end());
+  level_start.assign(std::size_t(top) + 2, 0);
+  for (const std::uint32_t l : level) ++level_start[l + 1];
+  for (std::size_t l = 0; l + 1 < level_start.size(); ++l) level_start[l + 1] += level_start[l];
+  row.resize(n);
+  std::vector<std::int64_t> fill(level_start.begin(), level_start.end() - 1);
+  for (std::size_t i = 0; i < n; ++i) row[fill[level[i]]++] = std::uint32_t(i);
+}
 }  // namespace
 
-bool BlockIncompleteCholesky::factorize(const BlockSparseMatrix& A) {
+void BlockIncompleteCholesky::analyse(const BlockSparseMatrix& A) {
   const std::size_t n = A.blocks();
   row_start_ = A.row_start();
   col_ = A.col();
+  col_start_ = A.col_start();
+  by_col_ = A.by_col();
+  by_col_row_ = A.by_col_row();
   upper_.resize(col_.size());
   inv_lower_.resize(n);
-  // Start from A: inv_lower_ holds the running pivot blocks D_i, upper_ the running W_ij.
-  for (std::size_t k = 0; k < col_.size(); ++k) upper_[k] = A.upper(std::int64_t(k));
-  for (std::size_t i = 0; i < n; ++i) inv_lower_[i] = A.diagonal(i);
-  for (std::size_t i = 0; i < n; ++i) {
-    // D_i = L L^T, U_ii = L^T; row i of U: U_ij = L^-1 W_ij (from U_ii^T U_ij = W_ij).
-    const Eigen::LLT<Mat6> llt(inv_lower_[i]);
-    if (llt.info() != Eigen::Success) return false;
-    inv_lower_[i] = lower_inverse(llt.matrixL());
-    const std::int64_t first = row_start_[i], last = row_start_[i + 1];
-    for (std::int64_t a = first; a < last; ++a) upper_[a] = (inv_lower_[i] * upper_[a]).eval();
-    // Schur complement of block i, kept only on the pattern: D_j -= U_ij^T U_ij,
-    // W_jl -= U_ij^T U_il for j < l both in row i.
-    for (std::int64_t a = first; a < last; ++a) {
-      const std::uint32_t j = col_[a];
-      inv_lower_[j].noalias() -= upper_[a].transpose() * upper_[a];
-      for (std::int64_t b = a + 1; b < last; ++b) {
-        const std::int64_t jl = A.find(j, col_[b]);
-        if (jl >= 0) upper_[jl].noalias() -= upper_[a].transpose() * upper_[b];
-      }
+  // Forward (and factorisation): row i needs the rows k < i with a block (k, i).
+  schedule(
+      n, false,
+      [&](std::size_t i, auto&& depend) {
+        for (std::int64_t c = col_start_[i]; c < col_start_[i + 1]; ++c) depend(by_col_row_[c]);
+      },
+      forward_.level_start, forward_.row);
+  // Backward: row i needs the rows j > i of its own blocks (i, j).
+  schedule(
+      n, true,
+      [&](std::size_t i, auto&& depend) {
+        for (std::int64_t a = row_start_[i]; a < row_start_[i + 1]; ++a) depend(col_[a]);
+      },
+      backward_.level_start, backward_.row);
+  pattern_id_ = A.pattern_id();
+}
+
+// Row i of U from the finished rows k < i (left-looking IC(0) restricted to A's pattern):
+// D_i = A_ii - sum_k U_ki^T U_ki,  W_ij = A_ij - sum_k U_ki^T U_kj  (k ascending, (i, j) stored),
+// then D_i = L L^T, U_ii = L^T and U_ij = L^-1 W_ij.
+bool BlockIncompleteCholesky::factor_row(const BlockSparseMatrix& A, std::size_t i) {
+  Mat6 D = A.diagonal(i);
+  const std::int64_t first = row_start_[i], last = row_start_[i + 1];
+  for (std::int64_t a = first; a < last; ++a) upper_[a] = A.upper(a);
+  for (std::int64_t c = col_start_[i]; c < col_start_[i + 1]; ++c) {
+    const std::int64_t ki = by_col_[c];
+    const std::int64_t k_end = row_start_[by_col_row_[c] + 1];
+    const Mat6& Uki = upper_[ki];
+    D.noalias() -= Uki.transpose() * Uki;
+    // Blocks (k, j) with j > i, merged against row i's sorted columns.
+    std::int64_t b = ki + 1, p = first;
+    while (b < k_end && p < last) {
+      if (col_[b] < col_[p])
+        ++b;
+      else if (col_[p] < col_[b])
+        ++p;
+      else
+        upper_[p++].noalias() -= Uki.transpose() * upper_[b++];
     }
+  }
+  const Eigen::LLT<Mat6> llt(D);
+  if (llt.info() != Eigen::Success) return false;
+  inv_lower_[i] = lower_inverse(llt.matrixL());
+  for (std::int64_t a = first; a < last; ++a) upper_[a] = (inv_lower_[i] * upper_[a]).eval();
+  return true;
+}
+
+bool BlockIncompleteCholesky::factorize(const BlockSparseMatrix& A) {
+  if (pattern_id_ != A.pattern_id() || inv_lower_.size() != A.blocks()) analyse(A);
+  const std::int64_t n = std::int64_t(A.blocks());
+  bool ok = true;
+  if (omp_get_max_threads() == 1) {
+    // Ascending rows satisfy every dependency and stream through memory.
+    for (std::int64_t i = 0; i < n && ok; ++i) ok = factor_row(A, std::size_t(i));
+  } else {
+    std::atomic<bool> good{true};
+    const std::int64_t levels = std::int64_t(forward_.levels());
+#pragma omp parallel
+    for (std::int64_t l = 0; l < levels; ++l) {
+#pragma omp for schedule(static)
+      for (std::int64_t s = forward_.level_start[l]; s < forward_.level_start[l + 1]; ++s)
+        if (good.load(std::memory_order_relaxed) && !factor_row(A, forward_.row[s]))
+          good.store(false, std::memory_order_relaxed);
+    }
+    ok = good.load();
+  }
+  gathered_ = false;
+  if (!ok) return false;
+  if (omp_get_max_threads() > 1) {
+    // The blocks U_ki in the transposed index's order, so that the level-scheduled forward
+    // sweep reads each row's blocks contiguously.
+    lower_.resize(col_.size());
+    const std::int64_t blocks = std::int64_t(lower_.size());
+#pragma omp parallel for schedule(static)
+    for (std::int64_t c = 0; c < blocks; ++c) lower_[c] = upper_[by_col_[c]];
+    gathered_ = true;
   }
   return true;
 }
 
+// U^T y = r: y_i = (U_ii^T)^-1 (r_i - sum_{k < i} U_ki^T y_k), into z.
+void BlockIncompleteCholesky::forward_row(std::size_t i, const double* r, double* z) const {
+  Vec6 acc = Eigen::Map<const Vec6>(r + 6 * i);
+  for (std::int64_t c = col_start_[i]; c < col_start_[i + 1]; ++c)
+    acc.noalias() -= lower_[c].transpose() * Eigen::Map<const Vec6>(z + 6 * std::size_t(by_col_row_[c]));
+  Eigen::Map<Vec6>(z + 6 * i) = inv_lower_[i] * acc;
+}
+
+// U z = y: z_i = U_ii^-1 (y_i - sum_{j > i} U_ij z_j), in place.
+void BlockIncompleteCholesky::backward_row(std::size_t i, double* z) const {
+  Vec6 acc = Eigen::Map<const Vec6>(z + 6 * i);
+  for (std::int64_t a = row_start_[i]; a < row_start_[i + 1]; ++a)
+    acc.noalias() -= upper_[a] * Eigen::Map<const Vec6>(z + 6 * std::size_t(col_[a]));
+  Eigen::Map<Vec6>(z + 6 * i) = inv_lower_[i].transpose() * acc;
+}
+
 void BlockIncompleteCholesky::apply(const double* r, double* z) const {
-  const std::size_t n = inv_lower_.size();
-  std::copy(r, r + 6 * n, z);
-  // U^T y = r, forward, scattering each solved block into the rows below.
-  for (std::size_t i = 0; i < n; ++i) {
-    const Vec6 y = inv_lower_[i] * Eigen::Map<const Vec6>(z + 6 * i);
-    Eigen::Map<Vec6>(z + 6 * i) = y;
-    for (std::int64_t a = row_start_[i]; a < row_start_[i + 1]; ++a)
-      Eigen::Map<Vec6>(z + 6 * std::size_t(col_[a])).noalias() -= upper_[a].transpose() * y;
+  const std::int64_t n = std::int64_t(inv_lower_.size());
+  if (omp_get_max_threads() == 1 || !gathered_) {
+    // Forward by scattering each solved block into the rows below: streams U in its own
+    // layout. z_i receives r_i - U_ki^T y_k for k ascending, the operations of forward_row.
+    std::copy(r, r + 6 * n, z);
+    for (std::int64_t i = 0; i < n; ++i) {
+      const Vec6 y = inv_lower_[i] * Eigen::Map<const Vec6>(z + 6 * i);
+      Eigen::Map<Vec6>(z + 6 * i) = y;
+      for (std::int64_t a = row_start_[i]; a < row_start_[i + 1]; ++a)
+        Eigen::Map<Vec6>(z + 6 * std::size_t(col_[a])).noalias() -= upper_[a].transpose() * Eigen::Map<const Vec6>(y.data());
+    }
+    for (std::int64_t i = n; i-- > 0;) backward_row(std::size_t(i), z);
+    return;
   }
-  // U z = y, backward.
-  for (std::size_t i = n; i-- > 0;) {
-    Vec6 acc = Eigen::Map<const Vec6>(z + 6 * i);
-    for (std::int64_t a = row_start_[i]; a < row_start_[i + 1]; ++a)
-      acc.noalias() -= upper_[a] * Eigen::Map<const Vec6>(z + 6 * std::size_t(col_[a]));
-    Eigen::Map<Vec6>(z + 6 * i) = inv_lower_[i].transpose() * acc;
+  // Levels: each row is summed in its fixed order by whichever thread owns it, so z does not
+  // depend on the thread count.
+  const std::int64_t forward = std::int64_t(forward_.levels()), backward = std::int64_t(backward_.levels());
+#pragma omp parallel
+  {
+    for (std::int64_t l = 0; l < forward; ++l) {
+#pragma omp for schedule(static)
+      for (std::int64_t s = forward_.level_start[l]; s < forward_.level_start[l + 1]; ++s)
+        forward_row(forward_.row[s], r, z);
+    }
+    for (std::int64_t l = 0; l < backward; ++l) {
+#pragma omp for schedule(static)
+      for (std::int64_t s = backward_.level_start[l]; s < backward_.level_start[l + 1]; ++s)
+        backward_row(backward_.row[s], z);
+    }
   }
 }
 

@@ -1,6 +1,5 @@
-#include <Eigen/Cholesky>
 #include <algorithm>
-#include <cmath>
+#include <atomic>
 
 #include "fldsim/block_sparse.hpp"
 
@@ -8,6 +7,8 @@ namespace fldsim {
 
 void BlockSparseMatrix::set_pattern(std::size_t n,
                                     const std::vector<std::pair<std::uint32_t, std::uint32_t>>& upper) {
+  static std::atomic<std::uint64_t> patterns{0};
+  pattern_id_ = ++patterns;
   diag_.assign(n, Mat6::Zero());
   // Sort and deduplicate the (i, j) pairs: rows in order, columns ascending within a row.
   std::vector<std::pair<std::uint32_t, std::uint32_t>> sorted(upper);
@@ -79,93 +80,6 @@ Eigen::MatrixXd BlockSparseMatrix::dense() const {
     }
   }
   return A;
-}
-
-void BlockPCG::prepare(const BlockSparseMatrix& A) {
-  const std::size_t n = A.blocks();
-  r_.resize(6 * n);
-  z_.resize(6 * n);
-  p_.resize(6 * n);
-  q_.resize(6 * n);
-  if (kind_ == Preconditioner::IncompleteCholesky && ic_.factorize(A)) {
-    active_ = Preconditioner::IncompleteCholesky;
-    return;
-  }
-  active_ = Preconditioner::BlockJacobi;
-  inv_diag_.resize(n);
-#pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < std::int64_t(n); ++i) {
-    // Diagonal blocks of an SPD matrix are SPD: invert through their Cholesky factor.
-    Eigen::LLT<Mat6> llt(A.diagonal(std::size_t(i)));
-    inv_diag_[i] = llt.solve(Mat6::Identity());
-  }
-}
-
-namespace {
-// Dot product summed in a fixed order per block, then over blocks serially: reproducible.
-double dot(const std::vector<double>& a, const std::vector<double>& b) {
-  double s = 0.0;
-  for (std::size_t k = 0; k < a.size(); ++k) s += a[k] * b[k];
-  return s;
-}
-}  // namespace
-
-void BlockPCG::precondition(const std::vector<double>& in, std::vector<double>& out) const {
-  if (active_ == Preconditioner::IncompleteCholesky) {
-    ic_.apply(in.data(), out.data());
-    return;
-  }
-  const std::int64_t n = std::int64_t(inv_diag_.size());
-#pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < n; ++i)
-    Eigen::Map<Vec6>(out.data() + 6 * i) = inv_diag_[i] * Eigen::Map<const Vec6>(in.data() + 6 * i);
-}
-
-BlockPCG::Result BlockPCG::solve(const BlockSparseMatrix& A, const double* b, double* x, double tolerance,
-                                 int max_iterations) {
-  const std::size_t n = A.blocks();
-  const std::size_t m = 6 * n;
-  Result result;
-  double bnorm = 0.0;
-  for (std::size_t k = 0; k < m; ++k) bnorm += b[k] * b[k];
-  bnorm = std::sqrt(bnorm);
-  if (bnorm == 0.0) {
-    std::fill(x, x + m, 0.0);
-    result.converged = true;
-    return result;
-  }
-  A.multiply(x, q_.data());
-  for (std::size_t k = 0; k < m; ++k) r_[k] = b[k] - q_[k];
-  double rnorm = std::sqrt(dot(r_, r_));
-  result.relative_residual = rnorm / bnorm;
-  if (result.relative_residual <= tolerance) {
-    result.converged = true;
-    return result;
-  }
-  precondition(r_, z_);
-  p_ = z_;
-  double rz = dot(r_, z_);
-  for (int it = 1; it <= max_iterations; ++it) {
-    A.multiply(p_.data(), q_.data());
-    const double alpha = rz / dot(p_, q_);
-    for (std::size_t k = 0; k < m; ++k) {
-      x[k] += alpha * p_[k];
-      r_[k] -= alpha * q_[k];
-    }
-    rnorm = std::sqrt(dot(r_, r_));
-    result.iterations = it;
-    result.relative_residual = rnorm / bnorm;
-    if (result.relative_residual <= tolerance) {
-      result.converged = true;
-      return result;
-    }
-    precondition(r_, z_);
-    const double rz_new = dot(r_, z_);
-    const double beta = rz_new / rz;
-    rz = rz_new;
-    for (std::size_t k = 0; k < m; ++k) p_[k] = z_[k] + beta * p_[k];
-  }
-  return result;
 }
 
 }  // namespace fldsim
