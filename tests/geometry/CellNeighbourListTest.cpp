@@ -180,6 +180,32 @@ TEST(CellNeighbourList, SmallBoxesAgreeWithBruteForce) {
   }
 }
 
+// Bodies carried by the shear flow (x += dgamma y, with the box strain) keep their neighbours
+// apart from the affine change dgamma r_y of each separation, |r_y| <= range: the list must stay
+// valid (and is kept) until dgamma range reaches the skin, however far the bodies far from y = 0
+// have moved, and must be rebuilt after that.
+TEST(CellNeighbourList, AffineShearKeepsTheListUntilTheStrainUsesTheSkin) {
+  const double range = 2.5, skin = 0.4, step = 0.004;
+  Scene sc = make_scene(std::make_shared<shapes::SphereShape>(1.0), 200, 11.0, 0.3, 71);
+  auto& s = *sc.system;
+  CellNeighbourList nl;
+  nl.configure(range, skin);
+  ASSERT_TRUE(nl.update(s));
+  bool rebuilt = false;
+  for (int k = 1; k <= 60; ++k) {
+    for (auto& x : s.positions()) x.x() += step * x.y();
+    s.box().set_strain(s.box().strain() + step);
+    s.update_nodes();
+    const bool now = nl.update(s);
+    // Affine bound alone: dgamma (range + 0) <= skin for dgamma <= 0.16, i.e. 40 steps.
+    if (k * step * range < skin - 1e-12) EXPECT_FALSE(now) << "step " << k;
+    rebuilt = rebuilt || now;
+    expect_agrees(nl, s, range, now, range + skin);
+  }
+  EXPECT_TRUE(rebuilt);
+  // The bodies at |y| ~ 1.4 L moved by 60 * 0.004 * 15 = 3.7 a, nine skins.
+}
+
 TEST(CellNeighbourList, MinGapIsTheSmallestSurfaceGap) {
   auto shape = std::make_shared<shapes::DicolloidShape>(1.0, 0.5, 1.0);
   Scene sc = make_scene(shape, 100, 12.0, 0.4, 5);

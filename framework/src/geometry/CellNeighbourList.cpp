@@ -14,24 +14,33 @@ void CellNeighbourList::configure(double range, double skin) {
   list_.set_range(range);
 }
 
+// A pair enters the range only if its separation changed by more than the skin. Writing each
+// node's displacement since the rebuild as the affine part of simple shear plus a rest,
+// d_k = dgamma y_k e_x + a_k, the separation of any image changes by
+//   r(t) - r(0) = a_j - a_i + dgamma r_y(0) e_x,
+// where the Lees-Edwards offset change is already in the dgamma r_y term (the image above moves
+// by dgamma L). A pair that can enter the range has |r_y(0)| <= range + |a_i| + |a_j|, so with a1,
+// a2 the two largest |a_k| the list is valid while a1 + a2 + |dgamma| (range + a1 + a2) <= skin.
+// Measuring the rest against the affine flow (instead of the raw displacement) keeps the list
+// through the large affine motion of bodies far from y = 0 at high Pe.
 bool CellNeighbourList::needs_rebuild(const System& s) const {
   if (!built_ || s.node_count() != reference_nodes_ || s.box().edge() != reference_edge_) return true;
   const auto& box = s.box();
   const auto& x = s.node_positions();
+  const double dgamma = box.strain() - reference_strain_;
   double first = 0.0, second = 0.0;
   for (std::size_t k = 0; k < x.size(); ++k) {
-    const double d = box.minimum_image(x[k] - reference_positions_[k]).norm();
-    if (d > first) {
+    Vec3 d = box.minimum_image(x[k] - reference_positions_[k]);
+    d.x() -= dgamma * reference_positions_[k].y();
+    const double a = d.norm();
+    if (a > first) {
       second = first;
-      first = d;
-    } else if (d > second) {
-      second = d;
+      first = a;
+    } else if (a > second) {
+      second = a;
     }
   }
-  const double L = box.edge();
-  double ds = std::abs(box.offset() - reference_offset_);
-  ds = std::min(ds, L - ds);
-  return first + second + ds > skin_;
+  return first + second + std::abs(dgamma) * (range_ + first + second) > skin_;
 }
 
 bool CellNeighbourList::update(const System& s) {
@@ -97,7 +106,7 @@ void CellNeighbourList::rebuild(const System& s) {
   });
 
   reference_positions_.assign(x.begin(), x.end());
-  reference_offset_ = box.offset();
+  reference_strain_ = box.strain();
   reference_edge_ = box.edge();
   reference_nodes_ = n;
   built_ = true;

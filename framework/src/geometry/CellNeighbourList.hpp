@@ -2,11 +2,11 @@
 // with a LeesEdwardsCellGrid (all pairs when fewer than 3 cells fit per side).
 //
 // Validity: a listed pair set stays complete for distances < range as long as no pair distance
-// can have shrunk by more than skin since the rebuild. A pair's separation changes by at most
-// |d_i| + |d_j| + |ds|, where d are the node displacements since the rebuild (minimum image under
-// the current box, so wrapping through a y face with its x shift is not mistaken for motion) and
-// ds is the change of the box offset (mod L; only pairs across the y faces feel it). The list is
-// rebuilt when the two largest |d| plus |ds| exceed skin.
+// can have shrunk by more than skin since the rebuild. Node displacements d are measured as the
+// minimum image under the current box (so wrapping through a y face with its x shift is not
+// mistaken for motion) less the affine shear displacement dgamma y e_x; a pair's separation then
+// changes by at most |a_i| + |a_j| + |dgamma| (range + |a_i| + |a_j|) (derivation at
+// needs_rebuild), and the list is rebuilt when that bound, for the two largest |a|, exceeds skin.
 #pragma once
 
 #include <cstdint>
@@ -43,7 +43,7 @@ class CellNeighbourList {
   NodePairList list_;
   // State at the last rebuild.
   std::vector<Vec3> reference_positions_;
-  double reference_offset_ = 0.0, reference_edge_ = 0.0;
+  double reference_strain_ = 0.0, reference_edge_ = 0.0;
   std::size_t reference_nodes_ = 0;
   // Cell list scratch (reused across rebuilds).
   LeesEdwardsCellGrid grid_;
