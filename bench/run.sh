@@ -21,7 +21,8 @@ step=$build/bin/fldsim_bench_step
 parts=$build/bin/fldsim_bench_parts
 
 # One thread unless a case asks for more: spinning OpenMP threads on a shared machine distort
-# everything. Two-thread cases use passive waiting for the same reason.
+# everything. Two-thread cases spin briefly before sleeping (GOMP_SPINCOUNT=10000, what `fldsim run`
+# sets): fully passive waiting makes every barrier of the level-scheduled IC(0) sweeps a sleep.
 export OMP_NUM_THREADS=1
 cache=$out/configs
 
@@ -32,7 +33,7 @@ run_case() {  # label, then key=value arguments of fldsim_bench_step
   local threads=1
   for a in "$@"; do case $a in threads=*) threads=${a#threads=} ;; esac; done
   local line
-  if line=$(OMP_NUM_THREADS=$threads OMP_WAIT_POLICY=passive "$step" label="$label" cache="$cache" "$@" \
+  if line=$(OMP_NUM_THREADS=$threads GOMP_SPINCOUNT=10000 "$step" label="$label" cache="$cache" "$@" \
             2>> "$out/step.log"); then
     echo "$line" >> "$csv"
     echo "  $line" | cut -d, -f1-15
@@ -62,11 +63,15 @@ for sh in $shapes; do
   done
 done
 
-echo "== scaling with N (spheres, one thread, Pe = 10)"
+echo "== scaling with N (spheres, Pe = 10; one thread, and two at N >= 8000)"
 for phi in $phis; do
   run_case scaling n=1000 phi=$phi steps=$s1 repeats=$reps
   run_case scaling n=8000 phi=$phi steps=$s8 warmup=1
-  [ "$quick" = 1 ] || run_case scaling n=27000 phi=$phi steps=$s27 warmup=1
+  run_case scaling n=8000 phi=$phi steps=$s8 warmup=1 threads=2
+  if [ "$quick" != 1 ]; then
+    run_case scaling n=27000 phi=$phi steps=$s27 warmup=1
+    run_case scaling n=27000 phi=$phi steps=$s27 warmup=1 threads=2
+  fi
 done
 
 echo "== skipped work (spheres, N = 1000, phi = 0.3, Pe = 10, one thread): each pair back to back"

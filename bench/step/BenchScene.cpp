@@ -171,40 +171,10 @@ BenchScene::BenchScene(const SceneSpec& spec, const std::vector<ObserverSpec>& o
       std::make_unique<EulerMaruyama>(spec.seed, request.brownian, DriftScheme::Midpoint, spec.count);
   evaluator_ = std::make_unique<VelocityEvaluator>(timed_, forces_, list_, spec.count);
   for (auto& o : observers_) o->begin(*system_, info_, sink_);
+  steps_ = std::make_unique<StepLoop>(*system_, *integrator_, *evaluator_, list_, observers_, info_,
+                                      request.brownian, true);
 }
 
-void BenchScene::step() {
-  System& sys = *system_;
-  const std::int64_t next = sys.step() + 1;
-  const double next_time = sys.time() + dt_;
-  bool any_due = false, stress_due = false;
-  for (const auto& o : observers_) {
-    const bool due = o->needs().every_step || o->due(next, next_time);
-    any_due = any_due || due;
-    stress_due = stress_due || (due && o->needs().stress);
-  }
-  integrator_->step(sys, *evaluator_, dt_, stress_due);
-  const double* U = integrator_->step_velocity();
-  for (std::size_t k = 0; k < 6 * sys.size(); ++k)
-    if (!std::isfinite(U[k])) throw Error("bench: velocity not finite at step " + std::to_string(sys.step()));
-  if (!any_due) return;
-  const auto t0 = std::chrono::steady_clock::now();
-  if (stress_due) {
-    stress_.hydrodynamic =
-        timed_->stresslet_sum(sys, evaluator_->pairs(), integrator_->step_relative_velocity());
-    stress_.interparticle = -evaluator_->virial();
-  }
-  StepView view{sys,
-                evaluator_->pairs(),
-                info_,
-                U,
-                evaluator_->force(),
-                stress_due ? &stress_ : nullptr,
-                evaluator_->stats(),
-                list_.min_gap(sys)};
-  for (auto& o : observers_)
-    if (o->needs().every_step || o->due(sys.step(), sys.time())) o->sample(view, sink_);
-  observer_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
+void BenchScene::step() { steps_->step(sink_); }
 
 }  // namespace fldsim::bench

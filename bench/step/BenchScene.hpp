@@ -21,6 +21,7 @@
 #include "fldsim/results.hpp"
 #include "geometry/CellNeighbourList.hpp"
 #include "plugins/PluginRegistry.hpp"
+#include "run/StepLoop.hpp"
 
 namespace fldsim::bench {
 
@@ -69,8 +70,7 @@ class BenchScene {
  public:
   BenchScene(const SceneSpec& spec, const std::vector<ObserverSpec>& observers);
 
-  // One time step exactly as run_experiment takes it: due observers decide whether stress pieces
-  // are computed, the integrator steps, due observers sample.
+  // One time step exactly as run_experiment takes it (StepLoop).
   void step();
 
   System& system() { return *system_; }
@@ -84,8 +84,9 @@ class BenchScene {
   double dt() const { return dt_; }
   const std::vector<std::string>& skipped() const { return skipped_; }
   const std::string& start_note() const { return start_note_; }
-  // Time spent in observers (stresslet sum + sample calls), seconds, since construction.
-  double observer_seconds() const { return observer_seconds_; }
+  // Time spent in the observers' sample calls, seconds, since construction (the stress pieces
+  // are computed inside the step: stresslets and the extra solve count as hydro time).
+  double observer_seconds() const { return steps_->observer_seconds(); }
 
  private:
   void start_configuration(const SceneSpec& spec);
@@ -101,9 +102,8 @@ class BenchScene {
   std::unique_ptr<TimeIntegrator> integrator_;
   DiscardingSink sink_;
   RunInfo info_;
-  StressPieces stress_;
+  std::unique_ptr<StepLoop> steps_;
   double dt_ = 0.0;
-  double observer_seconds_ = 0.0;
   std::vector<std::string> skipped_;
   std::string start_note_;
 };

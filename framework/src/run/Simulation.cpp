@@ -11,7 +11,6 @@
 #include <omp.h>
 #endif
 
-#include "dynamics/StressSampler.hpp"
 #include "dynamics/TimeIntegrator.hpp"
 #include "dynamics/VelocityEvaluator.hpp"
 #include "fldsim/observer.hpp"
@@ -20,6 +19,7 @@
 #include "io/Checkpoint.hpp"
 #include "io/FrameReader.hpp"
 #include "io/Hdf5ResultSink.hpp"
+#include "run/StepLoop.hpp"
 #include "run/ThreadPlan.hpp"
 
 namespace fldsim {
@@ -198,10 +198,6 @@ int run_experiment(const Experiment& ex, const PluginRegistry& registry, const R
         std::uint64_t(ex.seed), request.brownian,
         ex.drift == "none" ? DriftScheme::None : DriftScheme::Midpoint, sys.size());
   VelocityEvaluator evaluator(hydro, forces, list, sys.size());
-  StressSampler stress_sampler(sys.size(), request.brownian, !use_rk3 && ex.drift == "midpoint");
-  integrator->set_stress_stage([&stress_sampler](StressStage stage, const System& s, VelocityEvaluator& ev) {
-    stress_sampler.sample(stage, s, ev);
-  });
   if (!opt.resume.empty() && resume.warm_start.size() == evaluator.warm_start().size())
     evaluator.warm_start() = resume.warm_start;
 
@@ -287,32 +283,10 @@ int run_experiment(const Experiment& ex, const PluginRegistry& registry, const R
   const std::int64_t rebuilds_first = list.rebuilds();
   const auto loop0 = std::chrono::steady_clock::now();
   const std::int64_t first = sys.step();
+  StepLoop steps(sys, *integrator, evaluator, list, observers, info, request.brownian,
+                 !use_rk3 && ex.drift == "midpoint");
   while (sys.step() < total_steps) {
-    // Which observers sample after this step; only then is their extra work done.
-    const std::int64_t next = sys.step() + 1;
-    const double next_time = sys.time() + dt;
-    bool any_due = false, stress_due = false;
-    for (const auto& o : observers) {
-      const bool due = o->needs().every_step || o->due(next, next_time);
-      any_due = any_due || due;
-      stress_due = stress_due || (due && o->needs().stress);
-    }
-    integrator->step(sys, evaluator, dt, stress_due);
-    // On stress steps of a Brownian run the sampler solved once more; report the step's own solve.
-    const SolveStats st = stress_due && request.brownian ? stress_sampler.step_solve() : evaluator.stats();
-    const double* U = integrator->step_velocity();
-    for (std::size_t k = 0; k < 6 * sys.size(); ++k)
-      if (!std::isfinite(U[k]))
-        throw Error("step " + std::to_string(sys.step()) + ": velocity of body " + std::to_string(k / 6) +
-                    " is not finite (overlap or time step too large? min gap " +
-                    std::to_string(list.min_gap(sys)) + " a)");
-    if (any_due) {
-      StepView view{sys, evaluator.pairs(), info,
-                    U,   evaluator.force(), stress_due ? &stress_sampler.pieces() : nullptr,
-                    st,  list.min_gap(sys)};
-      for (auto& o : observers)
-        if (o->needs().every_step || o->due(sys.step(), sys.time())) o->sample(view, sink);
-    }
+    steps.step(sink);
     if (checkpoint_steps > 0 && sys.step() % checkpoint_steps == 0) write_checkpoint_now(checkpoint_path);
   }
   for (auto& o : observers) o->finish(info, sink);
