@@ -149,10 +149,16 @@ TEST(BlockIncompleteCholesky, IsExactWithoutFill) {
   BlockPCG pcg(fldsim::Preconditioner::IncompleteCholesky);
   pcg.prepare(A);
   ASSERT_EQ(pcg.active(), fldsim::Preconditioner::IncompleteCholesky);
+  // The sweeps use the factor rounded to single precision, so one iteration leaves a relative
+  // residual of order eps_f cond(A) ~ 6e-8 x 3 (diagonal 30, off-diagonal blocks ~ N(0, 1)), and
+  // the second removes the rounding (its residual is of the order of the first's squared).
   Eigen::VectorXd x = Eigen::VectorXd::Zero(A.size());
+  const auto one = pcg.solve(A, b.data(), x.data(), 1e-6, 1);
+  EXPECT_TRUE(one.converged) << one.relative_residual;
+  x.setZero();
   const auto res = pcg.solve(A, b.data(), x.data(), 1e-12, 10);
   EXPECT_TRUE(res.converged);
-  EXPECT_EQ(res.iterations, 1);
+  EXPECT_LE(res.iterations, 2);
 }
 
 TEST(BlockPCG, ReportsNonConvergence) {
@@ -196,10 +202,13 @@ TEST(BlockIncompleteCholesky, ProductMatchesMatrixOnItsPattern) {
       else
         fill = std::max(fill, diff);
     }
-  // Round-off of 180-unknown dense inversion at condition number ~10: 1e-10 of |A| ~ 10.
-  EXPECT_LT(worst, 1e-9);
-  // ...and the pattern has fill-in, so the factor is genuinely incomplete.
-  EXPECT_GT(fill, 1e-3);
+  // The sweeps apply the factor rounded to single precision (eps_f = 6e-8): M = U~^T U~ differs
+  // from the double-precision product by about eps_f |U|^2 per block, |U| ~ 4 here (diagonal
+  // blocks ~ 15), i.e. ~1e-6 (the dense inversion adds ~1e-13).
+  EXPECT_LT(worst, 2e-5);
+  // ...and the pattern has fill-in, so the factor is genuinely incomplete: the dropped fill
+  // (about 0.5 here) is four orders of magnitude above that rounding.
+  EXPECT_GT(fill, 0.05);
 }
 
 #ifdef _OPENMP

@@ -93,10 +93,16 @@ class FLDSIM_VISIBLE BlockIncompleteCholesky {
   std::vector<std::int64_t> row_start_, col_start_, by_col_;
   std::vector<std::uint32_t> col_, by_col_row_;
   Levels forward_, backward_;
-  std::vector<Mat6> inv_lower_;  // (U_ii^T)^-1, lower triangular
-  std::vector<Mat6> upper_;      // U_ij, i < j, laid out as A's upper blocks
-  std::vector<Mat6> lower_;      // U_ki laid out as A's transposed index (by_col); threads > 1
-  bool gathered_ = false;        // lower_ holds the current factor
+  // The factorisation runs in double: inv_lower_ = (U_ii^T)^-1 (lower triangular) and upper_ =
+  // U_ij (i < j, laid out as A's upper blocks).
+  std::vector<Mat6> inv_lower_, upper_;
+  // The sweeps read single-precision copies: they are memory-bound, and a rounded factor is still
+  // an exact U^T U of a slightly different U, so the preconditioner stays symmetric positive
+  // definite and CG's accuracy (set by the double-precision residual) is unchanged.
+  using Mat6f = Eigen::Matrix<float, 6, 6>;
+  std::vector<Mat6f> pivot_f_, upper_f_;
+  std::vector<Mat6f> lower_f_;  // upper_f_ in the transposed index's order (by_col); threads > 1
+  bool gathered_ = false;       // lower_f_ holds the current factor
 };
 
 enum class Preconditioner { BlockJacobi, IncompleteCholesky };

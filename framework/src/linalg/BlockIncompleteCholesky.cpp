@@ -22,6 +22,8 @@ Mat6 lower_inverse(const Mat6& L) {
   return X;
 }
 
+Mat6 widen(const Eigen::Matrix<float, 6, 6>& m) { return m.cast<double>(); }
+
 // Level of each row (0 for rows without dependencies, else 1 + the deepest dependency), visiting
 // rows so that dependencies come first; then the positions grouped by level, rows ascending.
 template <class Dependencies>
@@ -119,15 +121,24 @@ bool BlockIncompleteCholesky::factorize(const BlockSparseMatrix& A) {
   }
   gathered_ = false;
   if (!ok) return false;
-  if (omp_get_max_threads() > 1) {
+  const bool gather = omp_get_max_threads() > 1;
+  pivot_f_.resize(std::size_t(n));
+  upper_f_.resize(upper_.size());
+  if (gather) lower_f_.resize(upper_.size());
+#pragma omp parallel
+  {
+#pragma omp for schedule(static) nowait
+    for (std::int64_t i = 0; i < n; ++i) pivot_f_[i] = inv_lower_[i].cast<float>();
+#pragma omp for schedule(static)
+    for (std::int64_t a = 0; a < std::int64_t(upper_.size()); ++a) upper_f_[a] = upper_[a].cast<float>();
     // The blocks U_ki in the transposed index's order, so that the level-scheduled forward
     // sweep reads each row's blocks contiguously.
-    lower_.resize(col_.size());
-    const std::int64_t blocks = std::int64_t(lower_.size());
-#pragma omp parallel for schedule(static)
-    for (std::int64_t c = 0; c < blocks; ++c) lower_[c] = upper_[by_col_[c]];
-    gathered_ = true;
+    if (gather) {
+#pragma omp for schedule(static)
+      for (std::int64_t c = 0; c < std::int64_t(upper_.size()); ++c) lower_f_[c] = upper_f_[by_col_[c]];
+    }
   }
+  gathered_ = gather;
   return true;
 }
 
@@ -135,29 +146,30 @@ bool BlockIncompleteCholesky::factorize(const BlockSparseMatrix& A) {
 void BlockIncompleteCholesky::forward_row(std::size_t i, const double* r, double* z) const {
   Vec6 acc = Eigen::Map<const Vec6>(r + 6 * i);
   for (std::int64_t c = col_start_[i]; c < col_start_[i + 1]; ++c)
-    acc.noalias() -= lower_[c].transpose() * Eigen::Map<const Vec6>(z + 6 * std::size_t(by_col_row_[c]));
-  Eigen::Map<Vec6>(z + 6 * i) = inv_lower_[i] * acc;
+    acc.noalias() -= widen(lower_f_[c]).transpose() * Eigen::Map<const Vec6>(z + 6 * std::size_t(by_col_row_[c]));
+  Eigen::Map<Vec6>(z + 6 * i) = widen(pivot_f_[i]) * acc;
 }
 
 // U z = y: z_i = U_ii^-1 (y_i - sum_{j > i} U_ij z_j), in place.
 void BlockIncompleteCholesky::backward_row(std::size_t i, double* z) const {
   Vec6 acc = Eigen::Map<const Vec6>(z + 6 * i);
   for (std::int64_t a = row_start_[i]; a < row_start_[i + 1]; ++a)
-    acc.noalias() -= upper_[a] * Eigen::Map<const Vec6>(z + 6 * std::size_t(col_[a]));
-  Eigen::Map<Vec6>(z + 6 * i) = inv_lower_[i].transpose() * acc;
+    acc.noalias() -= widen(upper_f_[a]) * Eigen::Map<const Vec6>(z + 6 * std::size_t(col_[a]));
+  Eigen::Map<Vec6>(z + 6 * i) = widen(pivot_f_[i]).transpose() * acc;
 }
 
 void BlockIncompleteCholesky::apply(const double* r, double* z) const {
-  const std::int64_t n = std::int64_t(inv_lower_.size());
+  const std::int64_t n = std::int64_t(pivot_f_.size());
   if (omp_get_max_threads() == 1 || !gathered_) {
     // Forward by scattering each solved block into the rows below: streams U in its own
     // layout. z_i receives r_i - U_ki^T y_k for k ascending, the operations of forward_row.
     std::copy(r, r + 6 * n, z);
     for (std::int64_t i = 0; i < n; ++i) {
-      const Vec6 y = inv_lower_[i] * Eigen::Map<const Vec6>(z + 6 * i);
+      const Vec6 y = widen(pivot_f_[i]) * Eigen::Map<const Vec6>(z + 6 * i);
       Eigen::Map<Vec6>(z + 6 * i) = y;
       for (std::int64_t a = row_start_[i]; a < row_start_[i + 1]; ++a)
-        Eigen::Map<Vec6>(z + 6 * std::size_t(col_[a])).noalias() -= upper_[a].transpose() * Eigen::Map<const Vec6>(y.data());
+        Eigen::Map<Vec6>(z + 6 * std::size_t(col_[a])).noalias() -=
+            widen(upper_f_[a]).transpose() * Eigen::Map<const Vec6>(y.data());
     }
     for (std::int64_t i = n; i-- > 0;) backward_row(std::size_t(i), z);
     return;

@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <atomic>
+#include <omp.h>
 
 #include "fldsim/block_sparse.hpp"
 
@@ -54,17 +55,34 @@ std::int64_t BlockSparseMatrix::find(std::uint32_t i, std::uint32_t j) const {
 
 void BlockSparseMatrix::multiply(const double* x, double* y) const {
   const std::int64_t n = std::int64_t(diag_.size());
+  if (omp_get_max_threads() == 1) {
+    // One thread: each stored block is read once, y_i += A_ij x_j and y_j += A_ij^T x_i. Row j
+    // receives its lower terms by increasing i before its own diagonal and upper terms: the
+    // operations, in the order, of the gather below (which reads every block twice).
+    std::fill(y, y + 6 * n, 0.0);
+    for (std::int64_t i = 0; i < n; ++i) {
+      const Eigen::Map<const Vec6> xi(x + 6 * i);
+      Eigen::Map<Vec6> yi(y + 6 * i);
+      yi.noalias() += diag_[i] * xi;
+      for (std::int64_t k = row_start_[i]; k < row_start_[i + 1]; ++k) {
+        const std::size_t j = col_[k];
+        yi.noalias() += values_[k] * Eigen::Map<const Vec6>(x + 6 * j);
+        Eigen::Map<Vec6>(y + 6 * j).noalias() += values_[k].transpose() * xi;
+      }
+    }
+    return;
+  }
   // Each block row is owned by one thread and summed in a fixed order (lower part by increasing
   // row index, diagonal, upper part by increasing column), so y does not depend on the thread count.
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < n; ++i) {
-    Vec6 acc = Vec6::Zero();
+    Eigen::Map<Vec6> acc(y + 6 * i);
+    acc.setZero();
     for (std::int64_t k = col_start_[i]; k < col_start_[i + 1]; ++k)
       acc.noalias() += values_[by_col_[k]].transpose() * Eigen::Map<const Vec6>(x + 6 * by_col_row_[k]);
     acc.noalias() += diag_[i] * Eigen::Map<const Vec6>(x + 6 * i);
     for (std::int64_t k = row_start_[i]; k < row_start_[i + 1]; ++k)
       acc.noalias() += values_[k] * Eigen::Map<const Vec6>(x + 6 * std::size_t(col_[k]));
-    Eigen::Map<Vec6>(y + 6 * i) = acc;
   }
 }
 
