@@ -10,6 +10,10 @@
 #include <vector>
 
 #include "fldsim/error.hpp"
+#include "fldsim/force.hpp"
+#include "fldsim/hydro.hpp"
+#include "fldsim/observer.hpp"
+#include "fldsim/shape.hpp"
 #include "io/Summary.hpp"
 #include "plugins/PluginRegistry.hpp"
 #include "run/Experiment.hpp"
@@ -126,6 +130,13 @@ int cmd_run(const std::vector<std::string>& args, bool check_only) {
   std::unique_ptr<fldsim::PluginRegistry> registry;
   const fldsim::Experiment ex = fldsim::read_experiment(file, overrides, registry);
   if (check_only) {
+    // Construct every plugin once: checks that need a plugin's own knowledge (Params::fail in its
+    // constructor, e.g. a projection listed twice) then fail here too, not only at `run`.
+    registry->create<fldsim::Shape>("shape", ex.shape.name, ex.shape.params);
+    registry->create<fldsim::HydroModel>("hydro", ex.hydro.name, ex.hydro.params);
+    for (const auto& f : ex.forces) registry->create<fldsim::ForceLaw>("force", f.name, f.params);
+    for (const auto& o : ex.observers)
+      registry->create<fldsim::Observer>("observer", o.plugin.name, o.plugin.params);
     std::cout << file << ": valid (" << ex.count << " x " << ex.shape.name << ", hydro " << ex.hydro.name
               << ", " << ex.forces.size() << " force(s), " << ex.observers.size() << " observer(s))\n";
     return 0;

@@ -4,6 +4,7 @@
 // (counter-based noise keyed by step, warm start and observer accumulators saved).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -93,6 +94,18 @@ TEST(ExperimentRun, OverrideOfAListByNameIsAOneLineError) {
   const Command far = run("check " + (d / "e.yaml").string() + " --set forces.3.prefactor=1");
   EXPECT_EQ(far.code, 2);
   EXPECT_EQ(far.output, "--set forces.3.prefactor=1: index 3 out of range (the list has 1 entries)\n");
+}
+
+// A check only the plugin can make (in its constructor) is made by `check` too, not first at `run`.
+TEST(ExperimentRun, CheckConstructsPluginsSoTheirOwnChecksFail) {
+  const fs::path d = scratch("plugin-check");
+  write(d / "e.yaml", experiment((d / "out.h5").string(), 0.02, "fld",
+                                 "observers:\n  - {plugin: pair_distribution, projections: \"xy,xy\"}\n"));
+  const Command c = run("check " + (d / "e.yaml").string());
+  EXPECT_EQ(c.code, 2);
+  EXPECT_EQ(c.output.rfind((d / "e.yaml").string() + ":", 0), 0u) << c.output;
+  EXPECT_NE(c.output.find("projections: projection 'xy' listed twice\n"), std::string::npos) << c.output;
+  EXPECT_EQ(std::count(c.output.begin(), c.output.end(), '\n'), 1) << c.output;
 }
 
 TEST(ExperimentRun, ExistingResultIsNotOverwritten) {
