@@ -31,8 +31,8 @@ void describe_lubrication_params(ParamSchema& s) {
   s.number("tolerance", 1e-6, "", "relative residual of the conjugate-gradient solve").greater(0.0).less(1.0);
   s.integer("max_iterations", 1000L, "", "conjugate-gradient iteration limit").at_least(1);
   s.choice("preconditioner", std::string("incomplete_cholesky"), {"incomplete_cholesky", "block_jacobi"},
-           "CG preconditioner: block IC(0) on the pair pattern (fewest iterations; sequential sweeps) or "
-           "block Jacobi (parallel; more iterations)");
+           "CG preconditioner: block IC(0) on the pair pattern (fewest iterations; sweeps parallel by "
+           "dependency levels) or block Jacobi (parallel; more iterations)");
 }
 
 ModelSettings read_lubrication_params(const Params& p) {
