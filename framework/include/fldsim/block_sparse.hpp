@@ -56,6 +56,9 @@ class FLDSIM_VISIBLE BlockSparseMatrix {
   std::vector<std::int64_t> by_col_;
   std::vector<std::uint32_t> by_col_row_;
   std::uint64_t pattern_id_ = 0;
+  // set_pattern() scratch, kept so that a pattern change does not allocate.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> sorted_;
+  std::vector<std::int64_t> fill_;
 };
 
 // Block incomplete Cholesky IC(0): A ~ U^T U with U block upper triangular on A's own pattern
@@ -103,6 +106,9 @@ class FLDSIM_VISIBLE BlockIncompleteCholesky {
   std::vector<Mat6f> pivot_f_, upper_f_;
   std::vector<Mat6f> lower_f_;  // upper_f_ in the transposed index's order (by_col); threads > 1
   bool gathered_ = false;       // lower_f_ holds the current factor
+  // analyse() scratch, kept so that a pattern change does not allocate.
+  std::vector<std::uint32_t> level_scratch_;
+  std::vector<std::int64_t> fill_scratch_;
 };
 
 enum class Preconditioner { BlockJacobi, IncompleteCholesky };

@@ -1,9 +1,11 @@
+#include <omp.h>
+
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <atomic>
-#include <omp.h>
 
 #include "fldsim/block_sparse.hpp"
+#include "linalg/GrowOnly.hpp"
 
 namespace fldsim {
 namespace {
@@ -22,35 +24,43 @@ Mat6 lower_inverse(const Mat6& L) {
   return X;
 }
 
-Mat6 widen(const Eigen::Matrix<float, 6, 6>& m) { return m.cast<double>(); }
+Mat6 widen(const Eigen::Matrix<float, 6, 6>& m) {
+  return m.cast<double>();
+}
 
 // Level of each row (0 for rows without dependencies, else 1 + the deepest dependency), visiting
 // rows so that dependencies come first; then the positions grouped by level, rows ascending.
+// level and fill are scratch.
 template <class Dependencies>
-void schedule(std::size_t n, bool descending, Dependencies&& each_dependency, std::vector<std::int64_t>& level_start,
-              std::vector<std::uint32_t>& row) {
-  std::vector<std::uint32_t> level(n, 0);
+void schedule(std::size_t n, bool descending, Dependencies&& each_dependency,
+              std::vector<std::int64_t>& level_start, std::vector<std::uint32_t>& row,
+              std::vector<std::uint32_t>& level, std::vector<std::int64_t>& fill) {
+  level.assign(n, 0);
   for (std::size_t t = 0; t < n; ++t) {
     const std::size_t i = descending ? n - 1 - t : t;
     each_dependency(i, [&](std::size_t k) { level[i] = std::max(level[i], level[k] + 1); });
   }
   const std::uint32_t top = n == 0 ? 0 : *std::max_element(level.begin(), level.end());
+  linalg::reserve_with_headroom(level_start, std::size_t(top) + 2);
   level_start.assign(std::size_t(top) + 2, 0);
   for (const std::uint32_t l : level) ++level_start[l + 1];
   for (std::size_t l = 0; l + 1 < level_start.size(); ++l) level_start[l + 1] += level_start[l];
   row.resize(n);
-  std::vector<std::int64_t> fill(level_start.begin(), level_start.end() - 1);
+  linalg::reserve_with_headroom(fill, level_start.size());
+  fill.assign(level_start.begin(), level_start.end() - 1);
   for (std::size_t i = 0; i < n; ++i) row[fill[level[i]]++] = std::uint32_t(i);
 }
 }  // namespace
 
 void BlockIncompleteCholesky::analyse(const BlockSparseMatrix& A) {
   const std::size_t n = A.blocks();
-  row_start_ = A.row_start();
-  col_ = A.col();
-  col_start_ = A.col_start();
-  by_col_ = A.by_col();
-  by_col_row_ = A.by_col_row();
+  using linalg::copy_grow_only;
+  copy_grow_only(row_start_, A.row_start());
+  copy_grow_only(col_, A.col());
+  copy_grow_only(col_start_, A.col_start());
+  copy_grow_only(by_col_, A.by_col());
+  copy_grow_only(by_col_row_, A.by_col_row());
+  linalg::reserve_with_headroom(upper_, col_.size());
   upper_.resize(col_.size());
   inv_lower_.resize(n);
   // Forward (and factorisation): row i needs the rows k < i with a block (k, i).
@@ -59,14 +69,14 @@ void BlockIncompleteCholesky::analyse(const BlockSparseMatrix& A) {
       [&](std::size_t i, auto&& depend) {
         for (std::int64_t c = col_start_[i]; c < col_start_[i + 1]; ++c) depend(by_col_row_[c]);
       },
-      forward_.level_start, forward_.row);
+      forward_.level_start, forward_.row, level_scratch_, fill_scratch_);
   // Backward: row i needs the rows j > i of its own blocks (i, j).
   schedule(
       n, true,
       [&](std::size_t i, auto&& depend) {
         for (std::int64_t a = row_start_[i]; a < row_start_[i + 1]; ++a) depend(col_[a]);
       },
-      backward_.level_start, backward_.row);
+      backward_.level_start, backward_.row, level_scratch_, fill_scratch_);
   pattern_id_ = A.pattern_id();
 }
 
@@ -123,8 +133,12 @@ bool BlockIncompleteCholesky::factorize(const BlockSparseMatrix& A) {
   if (!ok) return false;
   const bool gather = omp_get_max_threads() > 1;
   pivot_f_.resize(std::size_t(n));
+  linalg::reserve_with_headroom(upper_f_, upper_.size());
   upper_f_.resize(upper_.size());
-  if (gather) lower_f_.resize(upper_.size());
+  if (gather) {
+    linalg::reserve_with_headroom(lower_f_, upper_.size());
+    lower_f_.resize(upper_.size());
+  }
 #pragma omp parallel
   {
 #pragma omp for schedule(static) nowait
@@ -146,7 +160,8 @@ bool BlockIncompleteCholesky::factorize(const BlockSparseMatrix& A) {
 void BlockIncompleteCholesky::forward_row(std::size_t i, const double* r, double* z) const {
   Vec6 acc = Eigen::Map<const Vec6>(r + 6 * i);
   for (std::int64_t c = col_start_[i]; c < col_start_[i + 1]; ++c)
-    acc.noalias() -= widen(lower_f_[c]).transpose() * Eigen::Map<const Vec6>(z + 6 * std::size_t(by_col_row_[c]));
+    acc.noalias() -=
+        widen(lower_f_[c]).transpose() * Eigen::Map<const Vec6>(z + 6 * std::size_t(by_col_row_[c]));
   Eigen::Map<Vec6>(z + 6 * i) = widen(pivot_f_[i]) * acc;
 }
 

@@ -1,41 +1,49 @@
-#include <algorithm>
-#include <atomic>
 #include <omp.h>
 
+#include <algorithm>
+#include <atomic>
+
 #include "fldsim/block_sparse.hpp"
+#include "linalg/GrowOnly.hpp"
 
 namespace fldsim {
 
 void BlockSparseMatrix::set_pattern(std::size_t n,
                                     const std::vector<std::pair<std::uint32_t, std::uint32_t>>& upper) {
+  using linalg::reserve_with_headroom;
   static std::atomic<std::uint64_t> patterns{0};
   pattern_id_ = ++patterns;
   diag_.assign(n, Mat6::Zero());
   // Sort and deduplicate the (i, j) pairs: rows in order, columns ascending within a row.
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> sorted(upper);
-  std::sort(sorted.begin(), sorted.end());
-  sorted.erase(std::unique(sorted.begin(), sorted.end()), sorted.end());
+  linalg::copy_grow_only(sorted_, upper);
+  std::sort(sorted_.begin(), sorted_.end());
+  sorted_.erase(std::unique(sorted_.begin(), sorted_.end()), sorted_.end());
+  const std::size_t nnz = sorted_.size();
 
   row_start_.assign(n + 1, 0);
-  col_.resize(sorted.size());
-  for (const auto& [i, j] : sorted) ++row_start_[i + 1];
+  reserve_with_headroom(col_, nnz);
+  col_.resize(nnz);
+  for (const auto& [i, j] : sorted_) ++row_start_[i + 1];
   for (std::size_t i = 0; i < n; ++i) row_start_[i + 1] += row_start_[i];
-  for (std::size_t k = 0; k < sorted.size(); ++k) col_[k] = sorted[k].second;
-  values_.assign(sorted.size(), Mat6::Zero());
+  for (std::size_t k = 0; k < nnz; ++k) col_[k] = sorted_[k].second;
+  reserve_with_headroom(values_, nnz);
+  values_.assign(nnz, Mat6::Zero());
 
   // Transposed index: for column j, the stored blocks (i, j) in increasing i (the sorted order
   // guarantees it), so the lower part of a row is summed in a fixed order.
   col_start_.assign(n + 1, 0);
-  for (const auto& [i, j] : sorted) ++col_start_[j + 1];
+  for (const auto& [i, j] : sorted_) ++col_start_[j + 1];
   for (std::size_t j = 0; j < n; ++j) col_start_[j + 1] += col_start_[j];
-  by_col_.resize(sorted.size());
-  by_col_row_.resize(sorted.size());
-  std::vector<std::int64_t> fill(col_start_.begin(), col_start_.end() - 1);
-  for (std::size_t k = 0; k < sorted.size(); ++k) {
-    const auto [i, j] = sorted[k];
-    by_col_[fill[j]] = std::int64_t(k);
-    by_col_row_[fill[j]] = i;
-    ++fill[j];
+  reserve_with_headroom(by_col_, nnz);
+  reserve_with_headroom(by_col_row_, nnz);
+  by_col_.resize(nnz);
+  by_col_row_.resize(nnz);
+  fill_.assign(col_start_.begin(), col_start_.end() - 1);
+  for (std::size_t k = 0; k < nnz; ++k) {
+    const auto [i, j] = sorted_[k];
+    by_col_[fill_[j]] = std::int64_t(k);
+    by_col_row_[fill_[j]] = i;
+    ++fill_[j];
   }
 }
 

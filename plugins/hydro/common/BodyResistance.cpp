@@ -66,11 +66,9 @@ bool BodyResistance::update(const System& system, const NodePairList& pairs) {
   return changed;
 }
 
-std::vector<std::pair<std::uint32_t, std::uint32_t>> BodyResistance::body_pairs() const {
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> out;
-  out.reserve(accepted_.size());
+void BodyResistance::body_pairs(std::vector<std::pair<std::uint32_t, std::uint32_t>>& out) const {
+  out.clear();
   for (const Accepted& p : accepted_) out.emplace_back(p.body_i, p.body_j);
-  return out;
 }
 
 void BodyResistance::bind(const BlockSparseMatrix& A) {

@@ -28,8 +28,9 @@ class BodyResistance {
   // Select the visible pairs and evaluate their body-level rows. Returns true when the set of
   // accepted pairs differs from the previous call (the matrix pattern must then be rebuilt).
   bool update(const System& system, const NodePairList& pairs);
-  // The (i < j) body pairs coupled by accepted node pairs, for BlockSparseMatrix::set_pattern.
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> body_pairs() const;
+  // The (i < j) body pairs coupled by accepted node pairs, for BlockSparseMatrix::set_pattern
+  // (into out, reusing its storage).
+  void body_pairs(std::vector<std::pair<std::uint32_t, std::uint32_t>>& out) const;
   // Remember where each pair's off-diagonal block lives in A (after set_pattern).
   void bind(const BlockSparseMatrix& A);
   // A += R_delta (values only; the pattern must be bound).

@@ -109,7 +109,8 @@ void ResistanceModel::assemble(const System& system, const NodePairList& pairs) 
   iso_.update(system, E_, shear);
   if (settings_.lubrication) {
     if (lub_.update(system, pairs) || A_.blocks() != n) {
-      A_.set_pattern(n, lub_.body_pairs());
+      lub_.body_pairs(body_pairs_);
+      A_.set_pattern(n, body_pairs_);
       lub_.bind(A_);
     }
   }

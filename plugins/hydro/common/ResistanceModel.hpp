@@ -66,6 +66,7 @@ class ResistanceModel : public HydroModel {
   BlockSparseMatrix A_;
   BlockPCG pcg_;
   std::vector<double> strain_force_, rhs_;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> body_pairs_;  // pattern scratch
   SolveStats stats_;
   bool configured_ = false;
 };
