@@ -8,7 +8,9 @@
 //    (and so every image) with the imposed flow too, since U includes U_inf.
 //  - RungeKutta3: the paper's explicit third-order scheme for deterministic (kT = 0) runs;
 //    Kutta's tableau: k1 = f(x), k2 = f(x + dt/2 k1), k3 = f(x - dt k1 + 2 dt k2),
-//    x += dt/6 (k1 + 4 k2 + k3). Orientations follow the combined angular velocity.
+//    x += dt/6 (k1 + 4 k2 + k3). Orientations take the same tableau on the rotation vector
+//    (Runge-Kutta-Munthe-Kaas: stage angular velocities corrected by -1/2 Theta x omega), so they
+//    are third-order too.
 #pragma once
 
 #include <cstdint>
