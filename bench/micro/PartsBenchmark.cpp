@@ -252,6 +252,21 @@ void BM_WholeStep(benchmark::State& state) {
   label(state, int(state.range(0)));
 }
 
+// Wall time of one OpenMP barrier with two threads: the price of every IC(0) dependency level
+// (about 60 per CG iteration) and every parallel loop of a multi-threaded step. Where it is large
+// (1.5 us measured on a 2-vCPU cloud VM; typically a few tenths of a microsecond on one socket) a second
+// thread does not pay at N = 1000, and ThreadTrial keeps one thread.
+void BM_OmpBarrier(benchmark::State& state) {
+  constexpr int kBarriers = 1000;
+  for (auto _ : state) {
+#pragma omp parallel num_threads(2)
+    for (int i = 0; i < kBarriers; ++i) {
+#pragma omp barrier
+    }
+  }
+  state.counters["barriers"] = kBarriers;
+}
+
 void scenes(benchmark::internal::Benchmark* b) {
   for (int i = 0; i < int(std::size(kScenes)); ++i) b->Arg(i);
   b->Unit(benchmark::kMillisecond);
@@ -275,5 +290,6 @@ BENCHMARK(BM_ObserveStress)->Apply(scenes);
 BENCHMARK(BM_ObserveDiffusion)->Apply(scenes);
 BENCHMARK(BM_ObserveTrajectory)->Apply(scenes);
 BENCHMARK(BM_WholeStep)->Apply(scenes);
+BENCHMARK(BM_OmpBarrier)->UseRealTime()->Unit(benchmark::kMicrosecond);
 
 BENCHMARK_MAIN();

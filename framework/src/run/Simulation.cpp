@@ -21,6 +21,7 @@
 #include "io/Hdf5ResultSink.hpp"
 #include "run/StepLoop.hpp"
 #include "run/ThreadPlan.hpp"
+#include "run/ThreadTrial.hpp"
 
 namespace fldsim {
 using namespace geometry;
@@ -285,8 +286,24 @@ int run_experiment(const Experiment& ex, const PluginRegistry& registry, const R
   const std::int64_t first = sys.step();
   StepLoop steps(sys, *integrator, evaluator, list, observers, info, request.brownian,
                  !use_rk3 && ex.drift == "midpoint");
+  ThreadTrial trial(threads.threads,
+                    ThreadTrial::should_run(threads.threads, threads.automatic, total_steps - first));
+  if (trial.running())
+    log << "threads: the first " << ThreadTrial::kSteps << " steps compare " << threads.threads
+        << " threads with 1 (results do not depend on it)\n";
   while (sys.step() < total_steps) {
+#ifdef _OPENMP
+    if (trial.running()) omp_set_num_threads(trial.threads_for_next_step());
+#endif
+    const auto step0 = std::chrono::steady_clock::now();
     steps.step(sink);
+    if (trial.running() &&
+        trial.record(std::chrono::duration<double>(std::chrono::steady_clock::now() - step0).count())) {
+#ifdef _OPENMP
+      omp_set_num_threads(trial.chosen());
+#endif
+      log << "threads: " << trial.report() << "\n" << std::flush;
+    }
     if (checkpoint_steps > 0 && sys.step() % checkpoint_steps == 0) write_checkpoint_now(checkpoint_path);
   }
   for (auto& o : observers) o->finish(info, sink);
@@ -299,8 +316,8 @@ int run_experiment(const Experiment& ex, const PluginRegistry& registry, const R
   log << "done: " << done << " steps in " << format_time(loop_s) << " ("
       << (done > 0 ? std::to_string(1000.0 * loop_s / double(done)) : std::string("-")) << " ms/step, "
       << (done > 0 ? double(evaluator.total_iterations() - cg_first) / double(done) : 0.0)
-      << " CG iterations/step (all solves), " << list.rebuilds() - rebuilds_first << " neighbour rebuilds); total "
-      << format_time(wall_s) << "\n"
+      << " CG iterations/step (all solves), " << list.rebuilds() - rebuilds_first
+      << " neighbour rebuilds); total " << format_time(wall_s) << "\n"
       << "results: " << output << "   (fldsim summary " << output << "; /usr/bin/python3 tools/plot_run.py "
       << output << ")\ncheckpoint: " << checkpoint_path << "\n";
   // Frequent rebuilds mean the nodes' Brownian steps are comparable to the skin (the affine shear
@@ -308,8 +325,8 @@ int run_experiment(const Experiment& ex, const PluginRegistry& registry, const R
   const std::int64_t rebuilds = list.rebuilds() - rebuilds_first;
   if (done >= 100 && 2 * rebuilds > done)
     log << "hint: the neighbour list was rebuilt " << rebuilds << " times in " << done
-        << " steps; the Brownian steps are large against run.skin = " << ex.skin << " a, and a larger skin (say "
-        << 2.0 * ex.skin << ") may be faster\n";
+        << " steps; the Brownian steps are large against run.skin = " << ex.skin
+        << " a, and a larger skin (say " << 2.0 * ex.skin << ") may be faster\n";
   return 0;
 }
 

@@ -54,6 +54,7 @@ ThreadPlan plan_threads(std::int64_t requested, std::size_t bodies) {
   } else {
     const int useful = int(std::max<std::size_t>(1, bodies / kBodiesPerThread));
     plan.threads = std::max(1, std::min(idle, useful));
+    plan.automatic = true;
     std::ostringstream why;
     why << "automatic: " << cpus << " usable CPU(s), load average " << format(load) << ", " << bodies
         << " bodies (one thread per " << kBodiesPerThread << ")";

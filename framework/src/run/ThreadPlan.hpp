@@ -14,6 +14,7 @@ namespace fldsim {
 
 struct ThreadPlan {
   int threads = 1;
+  bool automatic = false;             // chosen here, not by run.threads or OMP_NUM_THREADS
   std::string reason;                 // for the run log
   std::vector<std::string> warnings;  // oversubscription risks, for the run log
 };
@@ -24,7 +25,8 @@ ThreadPlan plan_threads(std::int64_t requested, std::size_t bodies);
 // Bodies per thread below which another thread costs more (fork/join and a barrier per IC(0)
 // dependency level, 28 levels per sweep at N = 1000, phi = 0.5) than it saves. At N = 1000,
 // bench/step measured a 2-thread speed-up of 1.24-1.38 on a quiet machine but 0.93-1.53 on the
-// shared 2-core one (bench/RESULTS.md), so one thread up to 2000 bodies.
+// shared 2-core one (bench/RESULTS.md), so one thread up to 2000 bodies. Above, a long run checks
+// the plan on its first steps (ThreadTrial).
 inline constexpr std::size_t kBodiesPerThread = 2000;
 
 }  // namespace fldsim
