@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # make bench: builds the benchmarks if needed, runs them and regenerates bench/RESULTS.md.
-#   bash bench/run.sh [BUILD_DIR]        full set, about 10-15 minutes on 2 cores
+#   bash bench/run.sh [BUILD_DIR]        full set, about 4-6 minutes on 2 cores
 #   FLDSIM_BENCH_QUICK=1 bash bench/run.sh [BUILD_DIR]   smoke version, about 2 minutes
 # Outputs: bench/results/{step.csv, parts.json, *.md} (git-ignored) and bench/RESULTS.md.
 # Every figure that is compared is a ratio of two numbers measured in this one invocation.
