@@ -71,6 +71,8 @@ for phi in $phis; do
   if [ "$quick" != 1 ]; then
     run_case scaling n=27000 phi=$phi steps=$s27 warmup=1
     run_case scaling n=27000 phi=$phi steps=$s27 warmup=1 threads=2
+    # Beyond the cache: is the cost per body and iteration flat from 27000 on? (one thread only)
+    run_case scaling n=64000 phi=$phi steps=$s27 warmup=1
   fi
 done
 

@@ -64,24 +64,34 @@ def step_tables(rows):
     if scaling:
         out += ["## Scaling with N (spheres, Pe = 10)", "",
                 "Lattice start + 50 MC sweeps for every N (see README). CPU time on one thread; the 2-thread "
-                "speed-up is wall ms/step on 1 thread / wall ms/step on 2 threads, measured back to back.", "",
+                "speed-up is wall ms/step on 1 thread / wall ms/step on 2 threads, measured back to back. "
+                "PCG per iteration = time in the PCG solves / CG iterations, per 1000 bodies: the cost of one "
+                "iteration, apart from how many a step needs.", "",
                 "| phi | N | steps timed | CPU ms/step | CPU ms/step per 1000 bodies | relative to N = 1000 | CG it/step | "
+                "PCG ms per iteration per 1000 bodies | relative to N = 1000 | "
                 "peak RSS MB | wall ms/step (1 thread) | wall ms/step (2 threads) | 2-thread speed-up |",
-                "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
+                "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
         for phi in sorted({r["phi"] for r in scaling}):
             one = sorted([r for r in scaling if r["phi"] == phi and r["threads"] == "1"], key=lambda r: int(r["n"]))
             two = {r["n"]: r for r in scaling if r["phi"] == phi and r["threads"] == "2"}
             if not one:
                 continue
             base = float(one[0]["cpu_ms_per_step"]) / int(one[0]["n"]) * 1000
+
+            def per_iteration(r):
+                return float(r["solve_ms"]) / max(float(r["cg_per_step"]), 1e-9) / int(r["n"]) * 1000
+
+            base_it = per_iteration(one[0])
             for r in one:
                 per = float(r["cpu_ms_per_step"]) / int(r["n"]) * 1000
+                it = per_iteration(r)
                 w1 = float(r["ms_per_step"])
                 r2 = two.get(r["n"])
                 w2 = f(float(r2["ms_per_step"])) if r2 else "-"
                 speed = f(w1 / float(r2["ms_per_step"]), 2) if r2 else "-"
                 out.append(f"| {phi} | {r['n']} | {r['steps']} | {f(float(r['cpu_ms_per_step']))} | {f(per, 2)} | "
-                           f"{f(per / base, 2)} | {r['cg_per_step']} | {r['rss_mb']} | {f(w1)} | {w2} | {speed} |")
+                           f"{f(per / base, 2)} | {r['cg_per_step']} | {f(it, 3)} | {f(it / base_it, 2)} | "
+                           f"{r['rss_mb']} | {f(w1)} | {w2} | {speed} |")
         out.append("")
 
     skips = [r for r in rows if r["label"].startswith("skip:")]
