@@ -59,8 +59,8 @@ def deterministic_table(rows):
 
 def brownian_table(rows):
     head = ("| family | dt | tolerance | cutoff | wall s | cpu s | CG it/step | eta_r | "
-            "delta_theta_m (rad) | g near contact | consistent (2 SE) |\n"
-            "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n")
+            "delta_theta_m (rad) | g near contact | consistent (2 SE) | same cutoff: largest Δ, consistent |\n"
+            "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n")
     lines = []
     for r in rows:
         s, t = r["setting"], r["timing"]
@@ -76,8 +76,15 @@ def brownian_table(rows):
         consistent = "reference" if "compared" not in r else (
             "yes" if all(c for _, _, c in r["compared"].values()) else
             "no: " + ", ".join(q for q, (_, _, c) in r["compared"].items() if not c))
+        same = "—"
+        if "numerical_compared" in r:
+            worst = max(err / comb if comb > 0 else math.inf for err, comb, _ in r["numerical_compared"].values())
+            ok = all(c for _, _, c in r["numerical_compared"].values())
+            same = f"{worst:.1f} SE, {'yes' if ok else 'no'}"
+        elif s.family == "numerical reference":
+            same = "reference"
         lines.append(f"| {name} | {s.dt:g} | {s.tolerance:g} | {s.cutoff:g} | {t.wall:.1f} "
-                     f"| {t.cpu:.1f} | {_fmt(t.cg_per_step)} | " + " | ".join(cells) + f" | {consistent} |")
+                     f"| {t.cpu:.1f} | {_fmt(t.cg_per_step)} | " + " | ".join(cells) + f" | {consistent} | {same} |")
     return head + "\n".join(lines) + "\n"
 
 

@@ -52,6 +52,7 @@ class Plan:
     numerical_reference: Setting
     deterministic: list  # settings compared with both references
     brownian_reference: Setting
+    brownian_numerical_reference: Setting  # the Brownian reference's dt and tolerance, default cutoff
     brownian: list
     strain: float  # deterministic runs: compare positions after this strain
     brownian_duration: float  # Brownian runs: length, in strain units (Pe = 10, paper units)
@@ -76,6 +77,8 @@ def _plan(dt_ref, deterministic, brownian_dt_ref, brownian, **lengths):
                 numerical_reference=Setting("numerical reference", dt_ref, TIGHT_TOLERANCE, DEFAULT_CUTOFF),
                 deterministic=deterministic,
                 brownian_reference=Setting("reference", brownian_dt_ref, TIGHT_TOLERANCE, TIGHT_CUTOFF),
+                brownian_numerical_reference=Setting("numerical reference", brownian_dt_ref, TIGHT_TOLERANCE,
+                                                     DEFAULT_CUTOFF),
                 brownian=brownian, **lengths)
 
 
