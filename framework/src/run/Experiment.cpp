@@ -58,7 +58,8 @@ ParamSchema run_schema() {
   s.choice(
       "drift", "midpoint", {"midpoint", "none"},
       "thermal drift kT div M: midpoint step with frozen noise, or none (wrong equilibrium; for comparison)");
-  s.number("skin", 0.3, "a", "neighbour-list skin: the list is rebuilt when the two largest node displacements (less the "
+  s.number("skin", 0.3, "a",
+           "neighbour-list skin: the list is rebuilt when the two largest node displacements (less the "
            "affine shear), plus the strain times the pair range, exceed it")
       .greater(0.0);
   s.number("checkpoint_every", 0.0, "time_unit", "write a checkpoint this often (0 = only at the end)")
