@@ -9,7 +9,7 @@
 # period in steps, 1), COUNT_CG (1: count CG iterations in extra runs under gdb, 0: skip),
 # COUNT_STEPS (steps of those counting runs, 50), FRESH_START (1: redo the Monte Carlo start even
 # if OUTDIR/start.h5 exists; it is deterministic, so it is reused by default), REPEAT (timed runs
-# of each code, taking turns; the median is reported, 3).
+# of each code, taking turns; the fastest is reported, 3).
 set -euo pipefail
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -92,7 +92,8 @@ total=$((WARMUP + STEPS))
 # Per-step CPU time = (CPU of a WARMUP + STEPS run - CPU of a WARMUP run) / STEPS: start-up and
 # warm-up cancel, and CPU time, unlike wall time, does not count the time a process waits for a
 # core on a shared machine. The long runs are repeated REPEAT times, the codes taking turns, and
-# report.py takes the median (same seeds: every repeat computes the same trajectory).
+# report.py takes the fastest (same seeds: every repeat computes the same trajectory; other jobs
+# on the machine only add time).
 echo "timing: warm-up runs ($WARMUP steps)" >&2
 run_lammps lammps-short "$WARMUP" 0
 run_fldsim fldsim-lammps-short "$WARMUP" "${lammps_forms[@]}"
