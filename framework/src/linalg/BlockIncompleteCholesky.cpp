@@ -3,6 +3,8 @@
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <atomic>
+#include <memory>
+#include <thread>
 
 #include "fldsim/block_sparse.hpp"
 #include "linalg/GrowOnly.hpp"
@@ -26,6 +28,13 @@ Mat6 lower_inverse(const Mat6& L) {
 
 Mat6 widen(const Eigen::Matrix<float, 6, 6>& m) {
   return m.cast<double>();
+}
+
+// Spin until another thread has published `flag` >= epoch; yield after a while, so a descheduled
+// owner gets the core back on an oversubscribed machine.
+void wait_until(const std::atomic<std::uint64_t>& flag, std::uint64_t epoch) {
+  for (int spins = 0; flag.load(std::memory_order_acquire) < epoch; ++spins)
+    if (spins > 2000) std::this_thread::yield();
 }
 
 // Level of each row (0 for rows without dependencies, else 1 + the deepest dependency), visiting
@@ -110,6 +119,16 @@ bool BlockIncompleteCholesky::factor_row(const BlockSparseMatrix& A, std::size_t
   return true;
 }
 
+std::atomic<std::uint64_t>* BlockIncompleteCholesky::done_flags(std::size_t n) const {
+  if (done_size_ != n) {  // once per body count: the flags outlive pattern changes
+    done_ = std::make_unique<std::atomic<std::uint64_t>[]>(n);
+    for (std::size_t i = 0; i < n; ++i) done_[i].store(0, std::memory_order_relaxed);
+    done_size_ = n;
+    epoch_ = 0;
+  }
+  return done_.get();
+}
+
 bool BlockIncompleteCholesky::factorize(const BlockSparseMatrix& A) {
   if (pattern_id_ != A.pattern_id() || inv_lower_.size() != A.blocks()) analyse(A);
   const std::int64_t n = std::int64_t(A.blocks());
@@ -118,14 +137,23 @@ bool BlockIncompleteCholesky::factorize(const BlockSparseMatrix& A) {
     // Ascending rows satisfy every dependency and stream through memory.
     for (std::int64_t i = 0; i < n && ok; ++i) ok = factor_row(A, std::size_t(i));
   } else {
+    // By levels without barriers, as in apply(): a row waits only for the rows it reads. A row
+    // whose pivot fails is still published (its blocks are not used: factorize() returns false).
     std::atomic<bool> good{true};
+    std::atomic<std::uint64_t>* done = done_flags(std::size_t(n));
+    const std::uint64_t epoch = ++epoch_;
     const std::int64_t levels = std::int64_t(forward_.levels());
 #pragma omp parallel
     for (std::int64_t l = 0; l < levels; ++l) {
-#pragma omp for schedule(static)
-      for (std::int64_t s = forward_.level_start[l]; s < forward_.level_start[l + 1]; ++s)
-        if (good.load(std::memory_order_relaxed) && !factor_row(A, forward_.row[s]))
+#pragma omp for schedule(static) nowait
+      for (std::int64_t s = forward_.level_start[l]; s < forward_.level_start[l + 1]; ++s) {
+        const std::size_t i = forward_.row[s];
+        for (std::int64_t c = col_start_[i]; c < col_start_[i + 1]; ++c)
+          wait_until(done[by_col_row_[c]], epoch);
+        if (good.load(std::memory_order_relaxed) && !factor_row(A, i))
           good.store(false, std::memory_order_relaxed);
+        done[i].store(epoch, std::memory_order_release);
+      }
     }
     ok = good.load();
   }
@@ -189,20 +217,36 @@ void BlockIncompleteCholesky::apply(const double* r, double* z) const {
     for (std::int64_t i = n; i-- > 0;) backward_row(std::size_t(i), z);
     return;
   }
-  // Levels: each row is summed in its fixed order by whichever thread owns it, so z does not
-  // depend on the thread count.
+  // Levels, without barriers between them: each thread takes its static share of every level in
+  // level order and waits only for the rows it reads (flag `done_[k]` >= this sweep's epoch), so
+  // a level costs a barrier only where a dependency really crosses threads (a barrier is 1.5 us on
+  // some VMs, and a sweep has ~30 levels). Each row is still summed in its fixed order by whichever
+  // thread owns it, so z does not depend on the thread count.
+  std::atomic<std::uint64_t>* done = done_flags(std::size_t(n));
+  const std::uint64_t fwd = epoch_ + 1, bwd = epoch_ + 2;
+  epoch_ += 2;
   const std::int64_t forward = std::int64_t(forward_.levels()), backward = std::int64_t(backward_.levels());
 #pragma omp parallel
   {
     for (std::int64_t l = 0; l < forward; ++l) {
-#pragma omp for schedule(static)
-      for (std::int64_t s = forward_.level_start[l]; s < forward_.level_start[l + 1]; ++s)
-        forward_row(forward_.row[s], r, z);
+#pragma omp for schedule(static) nowait
+      for (std::int64_t s = forward_.level_start[l]; s < forward_.level_start[l + 1]; ++s) {
+        const std::size_t i = forward_.row[s];
+        for (std::int64_t c = col_start_[i]; c < col_start_[i + 1]; ++c)
+          wait_until(done[by_col_row_[c]], fwd);
+        forward_row(i, r, z);
+        done[i].store(fwd, std::memory_order_release);
+      }
     }
     for (std::int64_t l = 0; l < backward; ++l) {
-#pragma omp for schedule(static)
-      for (std::int64_t s = backward_.level_start[l]; s < backward_.level_start[l + 1]; ++s)
-        backward_row(backward_.row[s], z);
+#pragma omp for schedule(static) nowait
+      for (std::int64_t s = backward_.level_start[l]; s < backward_.level_start[l + 1]; ++s) {
+        const std::size_t i = backward_.row[s];
+        wait_until(done[i], fwd);  // its own forward result
+        for (std::int64_t a = row_start_[i]; a < row_start_[i + 1]; ++a) wait_until(done[col_[a]], bwd);
+        backward_row(i, z);
+        done[i].store(bwd, std::memory_order_release);
+      }
     }
   }
 }
