@@ -252,8 +252,9 @@ void BM_WholeStep(benchmark::State& state) {
   label(state, int(state.range(0)));
 }
 
-// Wall time of one OpenMP barrier with two threads: the price of every IC(0) dependency level
-// (about 60 per CG iteration) and every parallel loop of a multi-threaded step. Where it is large
+// Wall time of one OpenMP barrier with two threads: the price of every parallel loop of a
+// multi-threaded step (about ten per CG iteration) and the scale of the cross-thread waits of the
+// IC(0) factorisation and sweeps. Where it is large
 // (1.5 us measured on a 2-vCPU cloud VM; typically a few tenths of a microsecond on one socket) a second
 // thread does not pay at N = 1000, and ThreadTrial keeps one thread.
 void BM_OmpBarrier(benchmark::State& state) {

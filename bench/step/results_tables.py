@@ -165,8 +165,9 @@ def parts_table(path):
     out.append("")
     if barrier is not None:
         out += [f"One OpenMP barrier with two threads (OmpBarrier, wall time): {barrier:.2f} us. A multi-threaded "
-                "step meets about 60 per CG iteration (IC(0) dependency levels and parallel loops); where this "
-                "is above a few tenths of a microsecond, a second thread does not pay at N = 1000.", ""]
+                "step synchronises about ten times per CG iteration (parallel loops) and waits wherever an IC(0) "
+                "dependency crosses threads; where this is above a few tenths of a microsecond, a second thread "
+                "does not pay at N = 1000.", ""]
     return out
 
 

@@ -68,7 +68,8 @@ class FLDSIM_VISIBLE BlockSparseMatrix {
 // squeeze coupling of near-contact pairs that block Jacobi leaves to the iterations. Applying it
 // is two block triangular sweeps (about one matrix-vector product). Both the factorisation and the
 // sweeps are row-oriented ("gather": row i reads only finished rows), scheduled by dependency
-// levels computed once per pattern: rows of one level are independent and run in parallel, and
+// levels computed once per pattern: rows of one level are independent and run in parallel, a
+// thread waiting (per-row flags, no barrier between levels) only for the rows it reads, and
 // every row is summed in the same fixed order whatever the thread count, so the result does not
 // depend on it. If a pivot block is not positive definite (IC(0) of a general SPD matrix can break
 // down) factorize() returns false and the caller falls back to block Jacobi.

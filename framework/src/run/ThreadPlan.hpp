@@ -22,11 +22,11 @@ struct ThreadPlan {
 // requested: the experiment's run.threads (0 = automatic).
 ThreadPlan plan_threads(std::int64_t requested, std::size_t bodies);
 
-// Bodies per thread below which another thread costs more (fork/join and a barrier per IC(0)
-// dependency level, 28 levels per sweep at N = 1000, phi = 0.5) than it saves. At N = 1000,
-// bench/step measured a 2-thread speed-up of 1.24-1.38 on a quiet machine but 0.93-1.53 on the
-// shared 2-core one (bench/RESULTS.md), so one thread up to 2000 bodies. Above, a long run checks
-// the plan on its first steps (ThreadTrial).
+// Bodies per thread below which another thread costs more (fork/join, and waits wherever an IC(0)
+// dependency crosses threads: 28 dependency levels per sweep at N = 1000, phi = 0.5) than it saves. At N =
+// 1000, bench/step measured a 2-thread speed-up of 1.24-1.38 on a quiet machine but 0.93-1.53 on the shared
+// 2-core one (bench/RESULTS.md), so one thread up to 2000 bodies. Above, a long run checks the plan on its
+// first steps (ThreadTrial).
 inline constexpr std::size_t kBodiesPerThread = 2000;
 
 }  // namespace fldsim

@@ -1,8 +1,8 @@
 // When the thread count is automatic and the plan asks for more than one thread, the run's first
 // steps measure whether the extra threads pay on this machine. They often do not: a parallel step
-// meets an OpenMP barrier at every IC(0) dependency level (about 60 per CG iteration), and on some
-// virtual machines a barrier costs 1.5 us, several times its usual cost on one socket
-// (bench/RESULTS.md, OmpBarrier).
+// synchronises its threads about ten times per CG iteration (fork/join of the parallel loops) and
+// at every IC(0) dependency that crosses threads, and on some virtual machines a barrier costs
+// 1.5 us, several times its usual cost on one socket (bench/RESULTS.md, OmpBarrier).
 // Results do not depend on the thread count (fixed-order sums, noise by body and pair identity;
 // tests ResistanceModel.AssemblyNoiseAndSolveAreIndependentOfThreadCount and
 // ThreadTrial.SwitchingThreadsBetweenStepsLeavesTheTrajectoryBitwiseUnchanged), so timing real
