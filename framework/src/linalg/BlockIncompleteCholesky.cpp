@@ -50,13 +50,11 @@ void schedule(std::size_t n, bool descending, Dependencies&& each_dependency,
     each_dependency(i, [&](std::size_t k) { level[i] = std::max(level[i], level[k] + 1); });
   }
   const std::uint32_t top = n == 0 ? 0 : *std::max_element(level.begin(), level.end());
-  linalg::reserve_with_headroom(level_start, std::size_t(top) + 2);
-  level_start.assign(std::size_t(top) + 2, 0);
+  linalg::fill_grow_only(level_start, std::size_t(top) + 2, std::int64_t(0));
   for (const std::uint32_t l : level) ++level_start[l + 1];
   for (std::size_t l = 0; l + 1 < level_start.size(); ++l) level_start[l + 1] += level_start[l];
   row.resize(n);
-  linalg::reserve_with_headroom(fill, level_start.size());
-  fill.assign(level_start.begin(), level_start.end() - 1);
+  linalg::copy_grow_only(fill, level_start.begin(), level_start.end() - 1);
   for (std::size_t i = 0; i < n; ++i) row[fill[level[i]]++] = std::uint32_t(i);
 }
 }  // namespace
@@ -69,8 +67,7 @@ void BlockIncompleteCholesky::analyse(const BlockSparseMatrix& A) {
   copy_grow_only(col_start_, A.col_start());
   copy_grow_only(by_col_, A.by_col());
   copy_grow_only(by_col_row_, A.by_col_row());
-  linalg::reserve_with_headroom(upper_, col_.size());
-  upper_.resize(col_.size());
+  linalg::resize_grow_only(upper_, col_.size());
   inv_lower_.resize(n);
   // Forward (and factorisation): row i needs the rows k < i with a block (k, i).
   schedule(
@@ -161,12 +158,8 @@ bool BlockIncompleteCholesky::factorize(const BlockSparseMatrix& A) {
   if (!ok) return false;
   const bool gather = omp_get_max_threads() > 1;
   pivot_f_.resize(std::size_t(n));
-  linalg::reserve_with_headroom(upper_f_, upper_.size());
-  upper_f_.resize(upper_.size());
-  if (gather) {
-    linalg::reserve_with_headroom(lower_f_, upper_.size());
-    lower_f_.resize(upper_.size());
-  }
+  linalg::resize_grow_only(upper_f_, upper_.size());
+  if (gather) linalg::resize_grow_only(lower_f_, upper_.size());
 #pragma omp parallel
   {
 #pragma omp for schedule(static) nowait

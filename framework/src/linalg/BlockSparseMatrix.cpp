@@ -10,7 +10,7 @@ namespace fldsim {
 
 void BlockSparseMatrix::set_pattern(std::size_t n,
                                     const std::vector<std::pair<std::uint32_t, std::uint32_t>>& upper) {
-  using linalg::reserve_with_headroom;
+  using linalg::resize_grow_only;
   static std::atomic<std::uint64_t> patterns{0};
   pattern_id_ = ++patterns;
   diag_.assign(n, Mat6::Zero());
@@ -21,23 +21,19 @@ void BlockSparseMatrix::set_pattern(std::size_t n,
   const std::size_t nnz = sorted_.size();
 
   row_start_.assign(n + 1, 0);
-  reserve_with_headroom(col_, nnz);
-  col_.resize(nnz);
+  resize_grow_only(col_, nnz);
   for (const auto& [i, j] : sorted_) ++row_start_[i + 1];
   for (std::size_t i = 0; i < n; ++i) row_start_[i + 1] += row_start_[i];
   for (std::size_t k = 0; k < nnz; ++k) col_[k] = sorted_[k].second;
-  reserve_with_headroom(values_, nnz);
-  values_.assign(nnz, Mat6::Zero());
+  linalg::fill_grow_only(values_, nnz, Mat6(Mat6::Zero()));
 
   // Transposed index: for column j, the stored blocks (i, j) in increasing i (the sorted order
   // guarantees it), so the lower part of a row is summed in a fixed order.
   col_start_.assign(n + 1, 0);
   for (const auto& [i, j] : sorted_) ++col_start_[j + 1];
   for (std::size_t j = 0; j < n; ++j) col_start_[j + 1] += col_start_[j];
-  reserve_with_headroom(by_col_, nnz);
-  reserve_with_headroom(by_col_row_, nnz);
-  by_col_.resize(nnz);
-  by_col_row_.resize(nnz);
+  resize_grow_only(by_col_, nnz);
+  resize_grow_only(by_col_row_, nnz);
   fill_.assign(col_start_.begin(), col_start_.end() - 1);
   for (std::size_t k = 0; k < nnz; ++k) {
     const auto [i, j] = sorted_[k];

@@ -6,8 +6,6 @@
 namespace fldsim {
 namespace {
 // Slot 0 is the untimed warm-up; then rounds of (planned, 1, 1, planned).
-constexpr std::size_t kSlots = ThreadTrial::kSteps;
-
 bool slot_uses_one_thread(std::size_t slot) {
   const std::size_t k = (slot - 1) % 4;
   return k == 1 || k == 2;
@@ -31,7 +29,7 @@ int ThreadTrial::threads_for_next_step() const {
 bool ThreadTrial::record(double seconds) {
   if (!running_) return false;
   if (index_ > 0) (slot_uses_one_thread(index_) ? one_ : many_).push_back(seconds);
-  if (++index_ < kSlots) return false;
+  if (++index_ < std::size_t(kSteps)) return false;
   running_ = false;
   median_one_ = median(one_);
   median_many_ = median(many_);
