@@ -5,7 +5,7 @@ BUILD ?= build
 JOBS ?= $(shell nproc)
 FLDSIM = $(BUILD)/bin/fldsim
 
-.PHONY: all deps configure build demo test bench figures docs format clean
+.PHONY: all deps configure build demo test bench figures docs format clean sanitize
 
 all: build
 
@@ -33,6 +33,25 @@ test: build
 	  skipped=$$(grep -cE 'Test +#[0-9]+: .*Not Run' ctest.log); \
 	  echo "$$passed passed, $$failed failed, $$skipped skipped"; exit $$status
 
+# The whole suite and the robustness fuzzer under AddressSanitizer + UndefinedBehaviorSanitizer,
+# in its own build folder (RelWithDebInfo: findings come with file:line). FUZZ_ITERATIONS sets
+# the fuzzer's budget; SANITIZE_TESTS a ctest -R filter (default: everything).
+SANITIZE_BUILD ?= build-sanitize
+FUZZ_ITERATIONS ?= 2000
+SANITIZE_TESTS ?= .
+sanitize: deps
+	@cmake -S . -B $(SANITIZE_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DFLDSIM_SANITIZE=ON \
+	  -DFLDSIM_BUILD_BENCH=OFF > $(SANITIZE_BUILD).configure.log 2>&1 || (cat $(SANITIZE_BUILD).configure.log; exit 1)
+	@cmake --build $(SANITIZE_BUILD) -j$(JOBS)
+	@cd $(SANITIZE_BUILD) && FLDSIM_FUZZ_ITERATIONS=$(FUZZ_ITERATIONS) \
+	  ASAN_OPTIONS=detect_leaks=1:abort_on_error=0:detect_odr_violation=0 \
+	  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+	  ctest --output-on-failure -j$(JOBS) --timeout 1800 -R '$(SANITIZE_TESTS)' 2>&1 | tee ctest.log; \
+	  status=$${PIPESTATUS[0]}; \
+	  passed=$$(grep -cE 'Test +#[0-9]+: .* +Passed +[0-9.]+ sec$$' ctest.log); \
+	  failed=$$(grep -cE 'Test +#[0-9]+: .*\*\*\*(Failed|Timeout|Exception)' ctest.log); \
+	  echo "sanitize: $$passed passed, $$failed failed"; exit $$status
+
 bench: build
 	@bash bench/run.sh $(BUILD)
 
@@ -46,4 +65,4 @@ format:
 	@clang-format -i $$(git ls-files '*.cpp' '*.hpp')
 
 clean:
-	rm -rf $(BUILD) $(BUILD).configure.log
+	rm -rf $(BUILD) $(BUILD).configure.log $(SANITIZE_BUILD) $(SANITIZE_BUILD).configure.log

@@ -9,6 +9,7 @@
 #include <variant>
 #include <vector>
 
+#include "config/RunCheck.hpp"
 #include "fldsim/error.hpp"
 #include "fldsim/force.hpp"
 #include "fldsim/hydro.hpp"
@@ -50,15 +51,23 @@ const char* kRunHelp =
     "Experiment keys (plugins document theirs in `fldsim plugins`):\n";
 
 const char* kCheckHelp =
-    "usage: fldsim check FILE.yaml [--set KEY=VALUE ...]\n"
-    "Validates every key of the experiment against the core and plugin schemas and prints all\n"
-    "problems as FILE:LINE:COL: key.path: message. Exit code 0 if valid, 2 otherwise.\n";
+    "usage: fldsim check FILE.yaml [-o OUT.h5] [--overwrite] [--resume CHECKPOINT] [--set KEY=VALUE ...]\n"
+    "Checks everything `fldsim run` with the same options would, without running or writing\n"
+    "anything: every key against the core and plugin schemas, every plugin constructed, the scene\n"
+    "(volume fraction the Monte Carlo start can pack, bodies and pair range against the box),\n"
+    "the step count and memory against this machine, listed positions, init files, the result\n"
+    "and checkpoint files (never replaced without --overwrite) and, with --resume, that the\n"
+    "checkpoint belongs to this experiment. Prints all problems, one line each, as\n"
+    "FILE:LINE:COL: key.path: message (or naming the option). Exit code 0 if valid, 2 otherwise.\n";
 
 const char* kPluginsHelp =
     "usage: fldsim plugins [--path DIR ...]\n"
     "Lists every plugin found on the search path (--path dirs, then FLDSIM_PLUGIN_PATH, then the\n"
-    "build and install plugin directories): kind, name, version, file and parameters; and any\n"
-    "library that could not be loaded, with the reason.\n";
+    "build and install plugin directories): kind, name, version, file and parameters; every\n"
+    "library that shadows another of the same kind and name (the first found is used); and any\n"
+    "library that could not be used, with the reason. Each library is looked into by a child\n"
+    "process, so one that crashes, aborts or hangs (FLDSIM_PLUGIN_LOAD_TIMEOUT seconds, default\n"
+    "20) while loading is reported and skipped.\n";
 
 const char* kSummaryHelp =
     "usage: fldsim summary RUN.h5\n"
@@ -110,13 +119,13 @@ int cmd_run(const std::vector<std::string>& args, bool check_only) {
       return 0;
     } else if (a == "--set") {
       overrides.push_back(value("KEY=VALUE"));
-    } else if (!check_only && (a == "-o" || a == "--output")) {
+    } else if (a == "-o" || a == "--output") {
       opt.output = value("a file name");
-    } else if (!check_only && a == "--overwrite") {
+    } else if (a == "--overwrite") {
       opt.overwrite = true;
-    } else if (!check_only && a == "--resume") {
+    } else if (a == "--resume") {
       opt.resume = value("a checkpoint file");
-    } else if (!check_only && (a == "-q" || a == "--quiet")) {
+    } else if (a == "-q" || a == "--quiet") {
       opt.quiet = true;
     } else if (!a.empty() && a[0] == '-') {
       return usage_error("unknown option " + a, help);
@@ -129,20 +138,17 @@ int cmd_run(const std::vector<std::string>& args, bool check_only) {
   if (file.empty()) return usage_error("no experiment file given", help);
   std::unique_ptr<fldsim::PluginRegistry> registry;
   const fldsim::Experiment ex = fldsim::read_experiment(file, overrides, registry);
+  // Everything `run` would refuse, refused now, before any work or file (RunCheck.hpp).
+  const fldsim::RunCheckReport report =
+      fldsim::check_run(ex, *registry, {opt.output, opt.overwrite, opt.resume});
+  std::ostream null_stream(nullptr);
+  std::ostream& log = opt.quiet ? null_stream : std::cerr;
+  for (const auto& w : report.warnings) log << "warning: " << w << "\n";
   if (check_only) {
-    // Construct every plugin once: checks that need a plugin's own knowledge (Params::fail in its
-    // constructor, e.g. a projection listed twice) then fail here too, not only at `run`.
-    registry->create<fldsim::Shape>("shape", ex.shape.name, ex.shape.params);
-    registry->create<fldsim::HydroModel>("hydro", ex.hydro.name, ex.hydro.params);
-    for (const auto& f : ex.forces) registry->create<fldsim::ForceLaw>("force", f.name, f.params);
-    for (const auto& o : ex.observers)
-      registry->create<fldsim::Observer>("observer", o.plugin.name, o.plugin.params);
-    std::cout << file << ": valid (" << ex.count << " x " << ex.shape.name << ", hydro " << ex.hydro.name
-              << ", " << ex.forces.size() << " force(s), " << ex.observers.size() << " observer(s))\n";
+    std::cout << file << ": valid (" << report.summary << ")\n";
     return 0;
   }
-  std::ostream null_stream(nullptr);
-  return fldsim::run_experiment(ex, *registry, opt, opt.quiet ? null_stream : std::cerr);
+  return fldsim::run_experiment(ex, *registry, opt, log);
 }
 
 int cmd_plugins(const std::vector<std::string>& args) {
@@ -173,6 +179,7 @@ int cmd_plugins(const std::vector<std::string>& args) {
                 << " — " << s.help << "\n";
     }
   }
+  for (const auto& s : registry.shadowed()) std::cout << "\nshadowed: " << s << "\n";
   for (const auto& f : registry.failures()) std::cout << "\nnot loaded: " << f << "\n";
   return 0;
 }
@@ -199,7 +206,9 @@ void set_openmp_wait_policy(char** argv) {
   execv("/proc/self/exe", argv);  // returns only on failure: run on with the default policy
 }
 
-int main(int argc, char** argv) {
+namespace {
+
+int dispatch(int argc, char** argv) {
   if (argc > 1 && std::string(argv[1]) == "run") set_openmp_wait_policy(argv);
   std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty()) {
@@ -224,8 +233,29 @@ int main(int argc, char** argv) {
   } catch (const fldsim::Error& e) {
     std::cerr << "fldsim: error: " << e.what() << "\n";
     return 1;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "fldsim: error: out of memory\n";
+    return 1;
   } catch (const std::exception& e) {
     std::cerr << "fldsim: internal error: " << e.what() << "\n";
     return 1;
+  } catch (...) {
+    std::cerr << "fldsim: internal error: an exception of unknown type\n";
+    return 1;
   }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int code = dispatch(argc, argv);
+  // A failed run may hold HDF5 files it could not close (a full disk): it ends without the
+  // library's exit handlers, which would try to flush them again and can crash. Everything the
+  // run keeps (its checkpoint) is already on disk, synced and renamed.
+  if (code != 0 && code != 2) {
+    std::cout.flush();
+    std::cerr.flush();
+    std::_Exit(code);
+  }
+  return code;
 }

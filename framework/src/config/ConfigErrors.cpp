@@ -36,8 +36,34 @@ std::string location_of(const std::string& file, const YAML::Node& node) {
 
 ConfigErrors::ConfigErrors(std::string file) : file_(std::move(file)) {}
 
+void ConfigErrors::add_override(const YAML::Node& key, const YAML::Node& value, const std::string& label) {
+  if (key.IsDefined()) overridden_.emplace_back(key, label);
+  // Every node of the value, depth first (a value is a few nodes: a scalar, a short list).
+  std::vector<YAML::Node> todo{value};
+  while (!todo.empty()) {
+    YAML::Node n = todo.back();
+    todo.pop_back();
+    if (!n.IsDefined()) continue;
+    overridden_.emplace_back(n, label);
+    if (n.IsSequence())
+      for (const auto& child : n) todo.push_back(child);
+    else if (n.IsMap())
+      for (const auto& kv : n) {
+        todo.push_back(kv.first);
+        todo.push_back(kv.second);
+      }
+  }
+}
+
+std::string ConfigErrors::location(const YAML::Node& node) const {
+  if (node.IsDefined())
+    for (const auto& [n, label] : overridden_)
+      if (n.is(node)) return label;
+  return location_of(file_, node);
+}
+
 void ConfigErrors::add(const YAML::Node& where, const std::string& path, const std::string& message) {
-  add(location_of(file_, where), path, message);
+  add(location(where), path, message);
 }
 
 void ConfigErrors::add(const std::string& location, const std::string& path, const std::string& message) {
@@ -46,6 +72,20 @@ void ConfigErrors::add(const std::string& location, const std::string& path, con
   if (!path.empty()) text += path + ": ";
   text += message;
   entries_.push_back({line, column, std::move(text)});
+}
+
+void ConfigErrors::add_formatted(const std::string& text) {
+  std::size_t start = 0;
+  while (start < text.size()) {
+    std::size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    std::string line = text.substr(start, end - start);
+    start = end + 1;
+    if (line.empty()) continue;
+    const std::size_t sep = line.find(": ");
+    const auto [l, c] = line_and_column(sep == std::string::npos ? std::string() : line.substr(0, sep));
+    entries_.push_back({l, c, std::move(line)});
+  }
 }
 
 std::string ConfigErrors::text() const {

@@ -234,22 +234,135 @@ std::string describe_yaml_value(const YAML::Node& n) {
   return "'" + n.Scalar() + "'";
 }
 
+namespace {
+
+constexpr std::uintmax_t kMaxFileBytes = 16u << 20;  // an experiment is a few KiB; tables of positions more
+constexpr std::size_t kMaxNodes = 1000000;           // after aliases are expanded ("billion laughs")
+constexpr std::size_t kMaxDepth = 64;
+
+std::string at(const std::string& path, const YAML::Mark& m) {
+  if (m.is_null()) return path;
+  return path + ":" + std::to_string(m.line + 1) + ":" + std::to_string(m.column + 1);
+}
+
+// A tab among a line's leading spaces: YAML indents with spaces only, and yaml-cpp's own
+// message for it ("end of map not found") does not say so.
+std::optional<std::pair<int, int>> tab_in_indentation(const std::string& text) {
+  int line = 1, column = 1;
+  bool leading = true;
+  for (char c : text) {
+    if (c == '\n') {
+      ++line;
+      column = 1;
+      leading = true;
+      continue;
+    }
+    if (leading && c == '\t') return std::make_pair(line, column);
+    if (c != ' ') leading = false;
+    ++column;
+  }
+  return std::nullopt;
+}
+
+// The first byte that is not part of valid UTF-8 (YAML files are Unicode text; yaml-cpp
+// passes other bytes through into keys and values and then into messages and the result file).
+std::optional<std::pair<int, int>> invalid_utf8(const std::string& text) {
+  int line = 1, column = 1;
+  for (std::size_t i = 0; i < text.size();) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    std::size_t len = c < 0x80 ? 1 : (c >> 5) == 0x6 ? 2 : (c >> 4) == 0xE ? 3 : (c >> 3) == 0x1E ? 4 : 0;
+    bool ok = len != 0 && i + len <= text.size();
+    for (std::size_t k = 1; ok && k < len; ++k) ok = (static_cast<unsigned char>(text[i + k]) >> 6) == 0x2;
+    if (!ok) return std::make_pair(line, column);
+    if (c == '\n') {
+      ++line;
+      column = 0;
+    }
+    ++column;
+    i += len;
+  }
+  return std::nullopt;
+}
+
+// Every map of the document: duplicate keys (yaml-cpp keeps both; a lookup would see only the
+// first), and a size bound so that aliases cannot expand into an enormous tree.
+void check_tree(const std::string& path, const YAML::Node& node, std::size_t depth, std::size_t& count,
+                ConfigErrors& errors) {
+  if (++count > kMaxNodes || depth > kMaxDepth) {
+    if (count == kMaxNodes + 1 || depth == kMaxDepth + 1)
+      errors.add(node, "",
+                 "the document nests deeper than " + std::to_string(kMaxDepth) +
+                     " levels or expands (through aliases) to more than " + std::to_string(kMaxNodes) +
+                     " values");
+    throw std::length_error("too large");
+  }
+  if (node.IsSequence()) {
+    for (const auto& child : node) check_tree(path, child, depth + 1, count, errors);
+  } else if (node.IsMap()) {
+    std::vector<std::pair<std::string, YAML::Mark>> seen;
+    for (const auto& kv : node) {
+      if (kv.first.IsScalar()) {
+        const std::string& key = kv.first.Scalar();
+        const auto it = std::find_if(seen.begin(), seen.end(), [&](const auto& p) { return p.first == key; });
+        if (it != seen.end())
+          errors.add(kv.first, key,
+                     "duplicate key (first given at line " + std::to_string(it->second.line + 1) +
+                         "); YAML keeps only one, so this one would be silently lost");
+        else
+          seen.emplace_back(key, kv.first.Mark());
+      }
+      check_tree(path, kv.first, depth + 1, count, errors);
+      check_tree(path, kv.second, depth + 1, count, errors);
+    }
+  }
+}
+
+}  // namespace
+
 YAML::Node load_yaml_file(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw ConfigError(path + ": cannot read: is a directory");
-  std::ifstream in(path);
+  std::ifstream in(path, std::ios::binary);
   if (!in) throw ConfigError(path + ": cannot read: " + std::strerror(errno));
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (!ec && size > kMaxFileBytes)
+    throw ConfigError(path + ": cannot read: " + std::to_string(size) +
+                      " bytes is not an experiment file (limit " + std::to_string(kMaxFileBytes) + ")");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throw ConfigError(path + ": cannot read: " + std::strerror(errno));
+  if (text.find('\0') != std::string::npos)
+    throw ConfigError(path + ": cannot read: a binary file (it holds NUL bytes), not a YAML experiment");
+  if (const auto bad = invalid_utf8(text))
+    throw ConfigError(path + ":" + std::to_string(bad->first) + ":" + std::to_string(bad->second) +
+                      ": not UTF-8 text (an experiment file is YAML, which is Unicode)");
+  std::vector<YAML::Node> documents;
   try {
-    return YAML::Load(in);
-  } catch (const YAML::ParserException& e) {
-    throw ConfigError(path + ":" + std::to_string(e.mark.line + 1) + ":" + std::to_string(e.mark.column + 1) +
-                      ": syntax error: " + e.msg);
+    documents = YAML::LoadAll(text);
+  } catch (const YAML::Exception& e) {
+    if (const auto tab = tab_in_indentation(text); tab && tab->first <= e.mark.line + 1)
+      throw ConfigError(path + ":" + std::to_string(tab->first) + ":" + std::to_string(tab->second) +
+                        ": syntax error: a tab in the indentation (YAML indents with spaces only)");
+    throw ConfigError(at(path, e.mark) + ": syntax error: " + e.msg);
   }
+  if (documents.empty() || documents[0].IsNull())
+    throw ConfigError(path + ": empty: expected a map of sections (system, flow, hydro, run, ...)");
+  if (documents.size() > 1)
+    throw ConfigError(at(path, documents[1].Mark()) +
+                      ": a second YAML document: one file holds one experiment (remove the `---` line and "
+                      "what follows, or split the file)");
+  ConfigErrors errors(path);
+  std::size_t count = 0;
+  try {
+    check_tree(path, documents[0], 0, count, errors);
+  } catch (const std::length_error&) {
+  }
+  errors.throw_if_any();
+  return documents[0];
 }
 
 Params validate_params(const YAML::Node& node, const ParamSchema& schema, const std::string& path,
                        ConfigErrors& errors, const std::set<std::string>& reserved) {
-  Params params(path, location_of(errors.file(), node));
+  Params params(path, errors.location(node));
   // A missing block (an invalid node: its type may not even be asked) validates as an empty map.
   const bool is_map = node.IsDefined() && node.IsMap();
   if (node.IsDefined() && !node.IsNull() && !is_map)
@@ -281,11 +394,11 @@ Params validate_params(const YAML::Node& node, const ParamSchema& schema, const 
       }
       ValueReader reader(errors, key_path);
       if (auto v = reader.read(*spec, kv.second))
-        params.set(key, std::move(*v), {location_of(errors.file(), kv.second), key_path}, true);
+        params.set(key, std::move(*v), {errors.location(kv.second), key_path}, true);
     }
   }
 
-  const std::string block_location = location_of(errors.file(), node);
+  const std::string block_location = errors.location(node);
   for (const auto& spec : schema.specs()) {
     if (params.has(spec.name)) continue;
     const std::string key_path = dotted(path, spec.name);

@@ -3,6 +3,8 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 
 #include "fldsim/error.hpp"
@@ -68,11 +70,13 @@ void fsync_path(const std::string& path, bool directory) {
   const int fd = ::open(path.c_str(), directory ? O_RDONLY | O_DIRECTORY : O_RDONLY);
   if (fd < 0) {
     if (directory) return;  // not all file systems allow opening a directory; the data is synced
-    throw Error(path + ": cannot reopen the checkpoint to sync it");
+    throw Error(path + ": cannot reopen the checkpoint to sync it: " + std::strerror(errno));
   }
   const int rc = ::fsync(fd);
+  const int why = errno;
   ::close(fd);
-  if (rc != 0 && !directory) throw Error(path + ": fsync failed");
+  if (rc != 0 && !directory)
+    throw Error(path + ": cannot sync the checkpoint to disk: " + std::strerror(why));
 }
 
 }  // namespace
@@ -89,6 +93,7 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
   } catch (const std::filesystem::filesystem_error& e) {
     throw Error(path + ": cannot create the checkpoint directory: " + e.what());
   }
+  const io::QuietCerr quiet;  // failed closes are reported once, below
   try {
     H5::H5File file(tmp, H5F_ACC_TRUNC);
     H5::Group root = file.openGroup("/");
@@ -124,9 +129,19 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
     }
     file.close();
   } catch (const H5::Exception& e) {
-    io::fail(tmp, "cannot write the checkpoint", e);
+    // The previous checkpoint stays as it was; the half-written one goes.
+    io::note_write_failure();
+    std::error_code ec;
+    std::filesystem::remove(tmp, ec);
+    io::fail(tmp, "cannot write the checkpoint (the previous one is kept)", e);
   }
-  fsync_path(tmp, false);
+  try {
+    fsync_path(tmp, false);
+  } catch (const Error&) {
+    std::error_code ec;
+    std::filesystem::remove(tmp, ec);
+    throw;
+  }
   std::error_code ec;
   std::filesystem::rename(tmp, path, ec);
   if (ec) throw Error(tmp + ": cannot rename to " + path + ": " + ec.message());

@@ -1,19 +1,86 @@
 #include "io/H5Helpers.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <mutex>
 
 #include "fldsim/error.hpp"
 
 namespace fldsim::io {
 
+namespace {
+
+// The innermost entry of HDF5's error stack says why, e.g. the sec2 driver's "file write failed:
+// ..., errno = 28, error message = 'No space left on device', ..." or "file signature not
+// found" for a file that is not HDF5; the C++ exception only names the failing call.
+herr_t innermost(unsigned n, const H5E_error2_t* entry, void* data) {
+  if (n == 0 && entry && entry->desc) *static_cast<std::string*>(data) = entry->desc;
+  return 0;
+}
+
+// The reason of the first failure since the last fail(): HDF5 calls this (its "auto" error
+// handler) when an API call fails, while the error stack is still intact; the C++ wrappers'
+// destructors clear the stack before a catch block could read it. Per thread.
+thread_local std::string first_reason;
+
+herr_t record_reason(hid_t stack, void*) {
+  std::string desc;
+  H5Ewalk2(stack, H5E_WALK_UPWARD, innermost, &desc);
+  // A later failure (a close during unwinding) is less telling, unless it carries an errno.
+  if (first_reason.empty() || (desc.find("error message = '") != std::string::npos &&
+                               first_reason.find("error message = '") == std::string::npos))
+    first_reason = desc;
+  return 0;
+}
+
+std::string explain(const std::string& desc) {
+  const std::string marker = "error message = '";
+  if (const auto at = desc.find(marker); at != std::string::npos) {
+    const auto end = desc.find('\'', at + marker.size());
+    return desc.substr(at + marker.size(),
+                       end == std::string::npos ? std::string::npos : end - at - marker.size());
+  }
+  if (desc.find("file signature not found") != std::string::npos) return "not an HDF5 file";
+  if (desc.find("unable to lock file") != std::string::npos)
+    return "locked by another process (another fldsim run writing it?)";
+  if (desc.find("truncated file") != std::string::npos)
+    return "truncated file (an interrupted copy or write?)";
+  return desc;
+}
+
+}  // namespace
+
+namespace {
+std::atomic<bool> any_write_failed{false};
+}
+
+void note_write_failure() {
+  any_write_failed = true;
+}
+
+bool write_failed() {
+  return any_write_failed;
+}
+
+QuietCerr::QuietCerr() : saved_(std::cerr.rdbuf(nullptr)) {}
+
+QuietCerr::~QuietCerr() {
+  std::cerr.rdbuf(saved_);
+  std::cerr.clear();
+}
+
 void quiet_hdf5() {
   static std::once_flag once;
-  std::call_once(once, [] { H5::Exception::dontPrint(); });
+  std::call_once(once, [] {
+    H5::Exception::dontPrint();
+    H5Eset_auto2(H5E_DEFAULT, record_reason, nullptr);
+  });
 }
 
 void fail(const std::string& file, const std::string& what, const H5::Exception& e) {
-  std::string detail = e.getDetailMsg();
+  std::string detail = explain(first_reason);
+  first_reason.clear();
+  if (detail.empty()) detail = e.getDetailMsg();
   if (detail.empty()) detail = e.getFuncName();
   throw Error(file + ": " + what + (detail.empty() ? "" : ": " + detail));
 }

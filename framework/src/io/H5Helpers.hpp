@@ -6,6 +6,7 @@
 #include <H5Cpp.h>
 
 #include <cstdint>
+#include <iostream>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,25 @@ namespace fldsim::io {
 
 // Silence the HDF5 error stack printer once per process (errors become exceptions instead).
 void quiet_hdf5();
+
+// After a failed write (a full disk) HDF5 1.10's own state can be inconsistent, and closing any
+// file, not only the one that failed, can then crash (SIGSEGV in H5F__close). Writers record
+// the failure; files still open are then left open for the (immediate) exit of the program.
+void note_write_failure();
+bool write_failed();
+
+// While alive, std::cerr prints nothing: the HDF5 C++ destructors print "H5Dclose failed" there
+// themselves when a close fails (a full disk), and the reason is reported once, by fail().
+class QuietCerr {
+ public:
+  QuietCerr();
+  ~QuietCerr();
+  QuietCerr(const QuietCerr&) = delete;
+  QuietCerr& operator=(const QuietCerr&) = delete;
+
+ private:
+  std::streambuf* saved_;
+};
 
 // Throw fldsim::Error("<file>: <what>: <HDF5 detail>").
 [[noreturn]] void fail(const std::string& file, const std::string& what, const H5::Exception& e);

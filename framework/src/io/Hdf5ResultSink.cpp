@@ -73,9 +73,9 @@ Hdf5ResultSink::Hdf5ResultSink(const std::string& path, bool overwrite)
     throw Error(path + ": cannot create the output directory: " + e.what());
   }
   try {
-    file_ = H5::H5File(part_path_, H5F_ACC_TRUNC);
+    file_ = std::make_unique<H5::H5File>(part_path_, H5F_ACC_TRUNC);
     open_ = true;
-    H5::Group root = file_.openGroup("/");
+    H5::Group root = file_->openGroup("/");
     H5::Group h5md = root.createGroup("h5md");
     io::set_int_attribute(h5md, "version", {1, 1});
     H5::Group author = h5md.createGroup("author");
@@ -84,18 +84,28 @@ Hdf5ResultSink::Hdf5ResultSink(const std::string& path, bool overwrite)
     io::set_string_attribute(creator, "name", "fldsim");
     io::set_string_attribute(creator, "version", FLDSIM_VERSION);
   } catch (const H5::Exception& e) {
+    failed_ = true;
+    io::note_write_failure();
     io::fail(part_path_, "cannot create the result file", e);
   }
 }
 
 Hdf5ResultSink::~Hdf5ResultSink() {
   // An uncommitted run keeps its data in `<path>.part` (never under the real name).
-  if (open_) {
-    try {
-      series_.clear();
-      file_.close();
-    } catch (...) {
-    }
+  if (!open_) return;
+  const io::QuietCerr quiet;
+  if (failed_ || io::write_failed()) {
+    // After a failed write (a full disk) HDF5 1.10 can crash closing a file (SIGSEGV in
+    // H5F__close): the handles are left open instead, and the program, which has failed,
+    // exits without HDF5's exit handlers (main.cpp).
+    new std::map<std::string, TimeSeries>(std::move(series_));
+    file_.release();
+    return;
+  }
+  try {
+    series_.clear();
+    file_->close();
+  } catch (...) {
   }
 }
 
@@ -108,7 +118,7 @@ void Hdf5ResultSink::write_parameters(const std::string& resolved_yaml,
                                       std::uint64_t seed, const std::map<std::string, std::string>& extra) {
   check_open("write_parameters");
   try {
-    H5::Group p = io::ensure_group(file_.openGroup("/"), "parameters");
+    H5::Group p = io::ensure_group(file_->openGroup("/"), "parameters");
     io::write_string_dataset(p, "experiment", resolved_yaml);
 
     std::size_t width = 1;
@@ -131,6 +141,8 @@ void Hdf5ResultSink::write_parameters(const std::string& resolved_yaml,
     a.write(H5::PredType::NATIVE_UINT64, &seed);
     for (const auto& [key, value] : extra) io::set_string_attribute(p, key, value);
   } catch (const H5::Exception& e) {
+    failed_ = true;
+    io::note_write_failure();
     io::fail(part_path_, "cannot write /parameters", e);
   }
 }
@@ -138,7 +150,7 @@ void Hdf5ResultSink::write_parameters(const std::string& resolved_yaml,
 H5::Group Hdf5ResultSink::parent_of_new(const std::string& path, std::string& leaf) {
   std::string parent;
   io::split_path(path, parent, leaf);
-  H5::Group g = io::ensure_group(file_.openGroup("/"), parent);
+  H5::Group g = io::ensure_group(file_->openGroup("/"), parent);
   if (H5Lexists(g.getId(), leaf.c_str(), H5P_DEFAULT) > 0)
     throw Error(part_path_ + ": " + path + " written twice");
   return g;
@@ -156,6 +168,8 @@ void Hdf5ResultSink::write_scalar(const std::string& path, double value, double 
     io::set_double_attribute(d, "stderr", stderr_value);
     io::set_string_attribute(d, "description", description);
   } catch (const H5::Exception& e) {
+    failed_ = true;
+    io::note_write_failure();
     io::fail(part_path_, "cannot write scalar " + path, e);
   }
 }
@@ -175,6 +189,8 @@ void Hdf5ResultSink::write_array(const std::string& path, const std::vector<std:
     io::set_string_attribute(d, "unit", unit);
     io::set_string_attribute(d, "description", description);
   } catch (const H5::Exception& e) {
+    failed_ = true;
+    io::note_write_failure();
     io::fail(part_path_, "cannot write array " + path, e);
   }
 }
@@ -189,7 +205,7 @@ Hdf5ResultSink::TimeSeries& Hdf5ResultSink::time_series(const std::string& path,
       throw Error(part_path_ + ": " + path + ": sample shape changed between appends");
     return it->second;
   }
-  H5::Group g = io::ensure_group(file_.openGroup("/"), path);
+  H5::Group g = io::ensure_group(file_->openGroup("/"), path);
   if (H5Lexists(g.getId(), "value", H5P_DEFAULT) > 0)
     throw Error(part_path_ + ": " + path + " already holds a time series not written by this run");
   TimeSeries ts;
@@ -221,13 +237,15 @@ void Hdf5ResultSink::append_sample(const std::string& path, std::int64_t step, d
     append_rows(ts.value, H5::PredType::NATIVE_DOUBLE, data, static_cast<int>(ts.extent.size()),
                 ts.extent.data(), ts.offset.data(), ts.block.data());
   } catch (const H5::Exception& e) {
+    failed_ = true;
+    io::note_write_failure();
     io::fail(part_path_, "cannot append a sample to " + path, e);
   }
 }
 
 template <class Fn>
 void Hdf5ResultSink::on_object(const std::string& path, Fn&& fn) {
-  H5::Group root = file_.openGroup("/");
+  H5::Group root = file_->openGroup("/");
   std::string trimmed = path;
   while (!trimmed.empty() && trimmed.front() == '/') trimmed.erase(trimmed.begin());
   if (trimmed.empty()) {
@@ -250,6 +268,8 @@ void Hdf5ResultSink::set_attribute(const char* what, const std::string& path, co
   try {
     on_object(path, fn);
   } catch (const H5::Exception& e) {
+    failed_ = true;
+    io::note_write_failure();
     io::fail(part_path_, "cannot write attribute " + key + " of " + path, e);
   }
 }
@@ -275,19 +295,24 @@ void Hdf5ResultSink::write_string_list_attribute(const std::string& path, const 
 void Hdf5ResultSink::flush() {
   check_open("flush");
   try {
-    file_.flush(H5F_SCOPE_GLOBAL);
+    file_->flush(H5F_SCOPE_GLOBAL);
   } catch (const H5::Exception& e) {
+    failed_ = true;
+    io::note_write_failure();
     io::fail(part_path_, "cannot flush", e);
   }
 }
 
 void Hdf5ResultSink::commit() {
   check_open("commit");
+  const io::QuietCerr quiet;  // the datasets' failed closes are reported once, by fail()
   try {
     series_.clear();
-    file_.close();
+    file_->close();
     open_ = false;
   } catch (const H5::Exception& e) {
+    failed_ = true;
+    io::note_write_failure();
     io::fail(part_path_, "cannot close", e);
   }
   std::error_code ec;

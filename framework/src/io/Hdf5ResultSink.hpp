@@ -13,6 +13,7 @@
 #include <array>
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -81,8 +82,9 @@ class FLDSIM_VISIBLE Hdf5ResultSink : public ResultSink {
 
   std::string path_;
   std::string part_path_;
-  H5::H5File file_;
+  std::unique_ptr<H5::H5File> file_;  // released, not closed, after a failed write
   bool open_ = false;
+  bool failed_ = false;  // a write failed: the file cannot be closed safely
   std::map<std::string, TimeSeries> series_;
 };
 

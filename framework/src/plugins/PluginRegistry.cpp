@@ -13,6 +13,7 @@
 #include "config/DidYouMean.hpp"
 #include "fldsim/api.hpp"
 #include "fldsim/plugin.hpp"
+#include "plugins/LibraryProbe.hpp"
 
 namespace fldsim {
 
@@ -25,35 +26,10 @@ struct PluginRegistry::Loaded {
 
 namespace {
 
-const char* const kKinds[] = {"shape", "hydro", "force", "observer"};
-
-bool is_known_kind(const std::string& kind) {
-  return std::find(std::begin(kKinds), std::end(kKinds), kind) != std::end(kKinds);
-}
-
 std::string join(const std::vector<std::string>& items, const char* separator = ", ") {
   std::string out;
   for (std::size_t i = 0; i < items.size(); ++i) out += (i ? separator : "") + items[i];
   return out;
-}
-
-std::string api_text(unsigned major, unsigned minor) {
-  return std::to_string(major) + "." + std::to_string(minor);
-}
-
-// Why a descriptor cannot be used, or "" when it can.
-std::string descriptor_problem(const fldsim_plugin_descriptor_t& d) {
-  if (d.api_major != FLDSIM_API_MAJOR || d.api_minor > FLDSIM_API_MINOR)
-    return "plugin API " + api_text(d.api_major, d.api_minor) + " does not match this fldsim (API " +
-           api_text(FLDSIM_API_MAJOR, FLDSIM_API_MINOR) + "); rebuild the plugin against this fldsim";
-  if (!d.kind || !d.name || !d.version || !d.summary || !d.build_tag)
-    return "malformed fldsim_plugin_descriptor (a null string)";
-  if (std::strcmp(d.build_tag, FLDSIM_BUILD_TAG) != 0)
-    return std::string("plugin build tag '") + d.build_tag + "' does not match this fldsim's '" +
-           FLDSIM_BUILD_TAG + "'; rebuild the plugin against this fldsim with the same compiler";
-  if (!is_known_kind(d.kind))
-    return std::string("unknown plugin kind '") + d.kind + "' (expected shape, hydro, force or observer)";
-  return "";
 }
 
 // Identity of a directory for de-duplication (the same place named two ways).
@@ -66,7 +42,7 @@ std::string canonical_or_same(const std::string& dir) {
 }  // namespace
 
 PluginRegistry::PluginRegistry(const std::vector<std::string>& directories) {
-  std::vector<std::string> seen;
+  std::vector<std::string> seen, files;
   for (const auto& dir : directories) {
     const std::string id = canonical_or_same(dir);
     if (std::find(seen.begin(), seen.end(), id) != seen.end()) continue;
@@ -74,72 +50,78 @@ PluginRegistry::PluginRegistry(const std::vector<std::string>& directories) {
     directories_.push_back(dir);
 
     std::error_code ec;
-    std::vector<std::string> files;
+    std::vector<std::string> here;
     for (const auto& entry : fs::directory_iterator(dir, ec)) {
       std::error_code type_ec;
       if (entry.path().extension() == ".so" && !entry.is_directory(type_ec))
-        files.push_back(entry.path().string());
+        here.push_back(entry.path().string());
     }
     if (ec) {
       failures_.push_back(dir + ": cannot list directory: " + ec.message());
       continue;
     }
-    std::sort(files.begin(), files.end());  // directory order is arbitrary; results must not be
-    for (const auto& file : files) scan_file(file);
+    std::sort(here.begin(), here.end());  // directory order is arbitrary; results must not be
+    files.insert(files.end(), here.begin(), here.end());
   }
+  // Probed side by side, then taken in search order (which decides what shadows what).
+  const std::vector<ProbeResult> probes = probe_libraries(files, probe_timeout());
+  for (std::size_t i = 0; i < files.size(); ++i) take_probe(files[i], probes[i]);
 }
 
 PluginRegistry::~PluginRegistry() = default;
 
-void PluginRegistry::scan_file(const std::string& file) {
-  auto fail = [&](const std::string& reason, const std::string& kind = "", const std::string& name = "") {
-    failures_.push_back(file + ": " + reason);
-    failed_files_.push_back({file, kind, name});
-  };
-
-  auto library = std::make_shared<boost::dll::shared_library>();
-  std::error_code ec;
-  library->load(file, boost::dll::load_mode::rtld_now, ec);
-  if (ec) {
-    // Boost.DLL leaves the loader's own explanation (e.g. "undefined symbol: ...") in dlerror().
-    const char* why = dlerror();
-    fail(std::string("cannot load: ") + (why ? why : ec.message()));
-    return;
-  }
-  if (!library->has("fldsim_plugin_descriptor")) {
-    fail("not an fldsim plugin (no fldsim_plugin_descriptor)");
-    return;
-  }
-  const auto& d = library->get<const fldsim_plugin_descriptor_t>("fldsim_plugin_descriptor");
-  const std::string kind = d.kind ? d.kind : "";
-  const std::string name = d.name ? d.name : "";
-  if (const std::string problem = descriptor_problem(d); !problem.empty()) {
-    fail(problem, kind, name);
+void PluginRegistry::take_probe(const std::string& file, const ProbeResult& probe) {
+  if (!probe.usable) {
+    failures_.push_back(file + ": " + probe.problem);
+    failed_files_.push_back({file, probe.kind, probe.name, probe.died});
     return;
   }
   for (const auto& p : plugins_) {
-    if (p.kind == kind && p.name == name) {
-      shadowed_.push_back(file + ": ignored, " + kind + " plugin '" + name + "' already provided by " +
-                          p.file);
+    if (p.kind == probe.kind && p.name == probe.name) {
+      shadowed_.push_back(file + ": ignored, " + probe.kind + " plugin '" + probe.name +
+                          "' already provided by " + p.file);
       return;
     }
   }
-  if (!library->has("fldsim_describe") || !library->has("fldsim_create")) {
-    fail("has a descriptor but no fldsim_describe/fldsim_create entry points (not built with FLDSIM_PLUGIN)",
-         kind, name);
-    return;
-  }
+  plugins_.push_back(PluginInfo{file, probe.kind, probe.name, probe.version, probe.summary, probe.schema});
+  loaded_.push_back(nullptr);
+}
 
-  PluginInfo info{file, kind, name, d.version, d.summary, {}};
-  try {
-    library->get_alias<PluginDescribeFn>("fldsim_describe")(info.schema);
-  } catch (const std::exception& e) {
-    fail(std::string("describe() failed: ") + e.what(), kind, name);
-    return;
+const PluginRegistry::Loaded& PluginRegistry::load(std::size_t index) const {
+  if (loaded_[index]) return *loaded_[index];
+  const PluginInfo& info = plugins_[index];
+  auto library = std::make_shared<boost::dll::shared_library>();
+  std::error_code ec;
+  library->load(info.file, boost::dll::load_mode::rtld_now, ec);
+  if (ec) {
+    const char* why = dlerror();
+    throw PluginError(info.file + ": cannot load: " + (why ? why : ec.message()));
   }
-  Loaded loaded{library, &library->get_alias<PluginCreateFn>("fldsim_create")};
-  plugins_.push_back(std::move(info));
-  loaded_.push_back(std::move(loaded));
+  // The probe checked this file; check again in case it was replaced since.
+  if (!library->has("fldsim_plugin_descriptor") || !library->has("fldsim_create"))
+    throw PluginError(info.file + ": no longer an fldsim plugin (replaced while fldsim ran?)");
+  const auto& d = library->get<const fldsim_plugin_descriptor_t>("fldsim_plugin_descriptor");
+  if (const std::string problem = descriptor_problem(d); !problem.empty())
+    throw PluginError(info.file + ": " + problem);
+  auto loaded = std::make_unique<Loaded>();
+  loaded->create = &library->get_alias<PluginCreateFn>("fldsim_create");
+  loaded->library = std::move(library);
+  loaded_[index] = std::move(loaded);
+  return *loaded_[index];
+}
+
+std::string PluginRegistry::describe_plugin(const std::string& kind, const std::string& name) const {
+  for (const auto& p : plugins_)
+    if (p.kind == kind && p.name == name) return kind + " plugin '" + name + "' (" + p.file + ")";
+  return kind + " plugin '" + name + "'";
+}
+
+void PluginRegistry::destroy(const std::string& kind, const std::string& name, Component* made) const {
+  try {
+    delete made;
+  } catch (...) {
+    rethrow_from_plugin(describe_plugin(kind, name), "its destructor");
+  }
 }
 
 std::vector<std::string> PluginRegistry::search_path(const std::vector<std::string>& yaml_paths,
@@ -190,7 +172,9 @@ std::vector<std::string> PluginRegistry::related_failures(const std::string& kin
   for (std::size_t i = 0; i < failed_files_.size(); ++i) {
     const auto& f = failed_files_[i];
     bool related = false;
-    if (!f.name.empty()) {
+    if (f.died) {
+      related = true;  // it never said which plugin it holds
+    } else if (!f.name.empty()) {
       related = f.kind == kind && f.name == name;
     } else {
       const std::string stem = fs::path(f.file).stem().string();
@@ -225,8 +209,10 @@ Component* PluginRegistry::make(const std::string& kind, const std::string& name
                                 std::shared_ptr<boost::dll::shared_library>& library) const {
   const PluginInfo& info = find(kind, name);
   const auto index = static_cast<std::size_t>(&info - plugins_.data());
-  library = loaded_[index].library;
-  Component* made = loaded_[index].create(params);
+  const Loaded& loaded = load(index);
+  library = loaded.library;
+  Component* made =
+      plugin_call(describe_plugin(kind, name), "its constructor", [&] { return loaded.create(params); });
   if (!made) throw PluginError(info.file + ": " + kind + " plugin '" + name + "' returned no object");
   return made;
 }

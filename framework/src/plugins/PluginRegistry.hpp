@@ -1,9 +1,13 @@
 // Finds, checks and opens plugin libraries, and makes objects from them.
 //
-// Each *.so is checked in an order that never lets an incompatible C++ type cross the library
-// boundary: load with RTLD_NOW (a missing symbol fails here, not mid-run), read the plain C
-// descriptor, compare API version and build tag, and only then touch the C++ entry points.
-// A library stays open while the registry or any object it made is alive.
+// Each *.so on the search path is probed in a child process (LibraryProbe): loaded with
+// RTLD_NOW (a missing symbol fails there, not mid-run), its plain C descriptor read, API version
+// and build tag compared, and only then its describe() called. A library that aborts, crashes,
+// hangs or throws while probed is reported in failures() and skipped; the program goes on.
+// This process loads a library only when an object of one of its plugins is made, so a command
+// loads just the plugins its experiment names. A library stays open while the registry or any
+// object it made is alive. Objects of the four plugin kinds come wrapped in a guard
+// (PluginBoundary.hpp) that turns anything the plugin throws into a core exception naming it.
 #pragma once
 
 #include <memory>
@@ -14,6 +18,7 @@
 #include "fldsim/error.hpp"
 #include "fldsim/params.hpp"
 #include "fldsim/plugin_base.hpp"
+#include "plugins/PluginBoundary.hpp"
 
 namespace boost::dll {
 class shared_library;
@@ -26,11 +31,14 @@ struct PluginInfo {
   ParamSchema schema;
 };
 
+struct ProbeResult;
+
 class PluginRegistry {
  public:
   // Scans each directory (non-recursively, files *.so, in name order) in the given order; the
   // first plugin of a given (kind, name) wins and later ones are listed in shadowed(). A file
-  // that cannot be used is recorded in failures() and does not stop the scan.
+  // that cannot be used is recorded in failures() and does not stop the scan. Nothing is
+  // loaded into this process yet.
   explicit PluginRegistry(const std::vector<std::string>& directories);
   ~PluginRegistry();
   PluginRegistry(const PluginRegistry&) = delete;
@@ -52,28 +60,45 @@ class PluginRegistry {
   // like the wanted plugin.
   const PluginInfo& find(const std::string& kind, const std::string& name) const;
 
-  // Makes the object. The shared_ptr's deleter owns a reference to the library, so the object
-  // is destroyed while its code is still mapped, even after the registry is gone. Throws
-  // PluginError if the object is not a T; the plugin's own ConfigError passes through.
+  // "observer plugin 'stress' (FILE)": how messages name a plugin.
+  std::string describe_plugin(const std::string& kind, const std::string& name) const;
+
+  // Makes the object, loading its library into this process first if needed. The shared_ptr's
+  // deleter owns a reference to the library, so the object is destroyed while its code is
+  // still mapped, even after the registry is gone. Throws PluginError if the object is not a T;
+  // the plugin's own ConfigError passes through; anything else it throws becomes an Error
+  // naming the plugin and its file.
   template <class T>
   std::shared_ptr<T> create(const std::string& kind, const std::string& name, const Params& params) const {
     std::shared_ptr<boost::dll::shared_library> library;
     Component* made = make(kind, name, params, library);
     T* typed = dynamic_cast<T*>(made);
     if (!typed) {
-      delete made;
+      destroy(kind, name, made);
       throw_wrong_type(kind, name, typeid(T));
     }
     made->set_plugin_name(name);
-    return std::shared_ptr<T>(typed, [made, library](T*) mutable {
-      delete made;      // runs the plugin's destructor while the library is mapped
-      library.reset();  // then lets go of the library
+    const std::string who = describe_plugin(kind, name);
+    std::shared_ptr<T> object(typed, [made, library, who](T*) mutable {
+      // Runs the plugin's destructor while the library is mapped, then lets go of the library.
+      // A destructor must not throw; if one does anyway, it stops here.
+      try {
+        delete made;
+      } catch (...) {
+      }
+      library.reset();
     });
+    std::shared_ptr<T> guarded = guard_plugin_object(std::move(object), who);
+    guarded->set_plugin_name(name);
+    return guarded;
   }
 
  private:
   struct Loaded;
-  void scan_file(const std::string& file);
+  void take_probe(const std::string& file, const ProbeResult& probe);
+  // Loads the library of plugins_[index] into this process (once).
+  const Loaded& load(std::size_t index) const;
+  void destroy(const std::string& kind, const std::string& name, Component* made) const;
   Component* make(const std::string& kind, const std::string& name, const Params& params,
                   std::shared_ptr<boost::dll::shared_library>& library) const;
   [[noreturn]] void throw_wrong_type(const std::string& kind, const std::string& name,
@@ -82,11 +107,12 @@ class PluginRegistry {
 
   std::vector<std::string> directories_;
   std::vector<PluginInfo> plugins_;
-  std::vector<Loaded> loaded_;  // parallel to plugins_
+  mutable std::vector<std::unique_ptr<Loaded>> loaded_;  // parallel to plugins_; null until loaded
   std::vector<std::string> failures_;
   std::vector<std::string> shadowed_;
   struct FailedFile {
     std::string file, kind, name;  // kind/name empty when the descriptor could not be read
+    bool died = false;             // crashed, hung or exited while probed
   };
   std::vector<FailedFile> failed_files_;
 };

@@ -16,7 +16,9 @@ const std::vector<std::string> kTopKeys = {"system", "flow",      "hydro",  "for
 
 ParamSchema system_schema() {
   ParamSchema s;
-  s.integer("count", std::nullopt, "", "number of bodies N").at_least(1);
+  s.integer("count", std::nullopt, "", "number of bodies N (memory is also checked against this machine)")
+      .at_least(1)
+      .at_most(100000000);
   s.number("volume_fraction", std::nullopt, "", "true volume fraction phi = N V_body / V_box")
       .greater(0.0)
       .less(0.74);
@@ -30,8 +32,9 @@ ParamSchema init_schema() {
            "monte_carlo: hard-body Monte Carlo from a lattice; explicit: `positions` (and "
            "`orientations`) listed here; file: last frame of an earlier result file");
   s.integer("seed", 1, "", "seed of the Monte Carlo start").at_least(0);
-  s.integer("sweeps", 0, "", "Monte Carlo sweeps; 0 = until decorrelated").at_least(0);
-  s.table("positions", std::vector<std::vector<double>>{}, "a", "explicit start: one [x, y, z] per body");
+  s.integer("sweeps", 0, "", "Monte Carlo sweeps; 0 = until decorrelated").at_least(0).at_most(1000000);
+  s.table("positions", std::vector<std::vector<double>>{}, "a", "explicit start: one [x, y, z] per body")
+      .length(3);
   s.table("orientations", std::vector<std::vector<double>>{}, "",
           "explicit start: one director [nx, ny, nz] or quaternion [w, x, y, z] per body");
   s.text("file", std::string(), "file start: an earlier result file (its last trajectory frame)");
@@ -68,51 +71,99 @@ ParamSchema run_schema() {
             "OpenMP threads; 0 = automatic: OMP_NUM_THREADS if set, else the idle usable cores, at most one "
             "per 2000 bodies, kept after the first 13 steps only if measurably faster than one thread "
             "(runs of 200 steps or more)")
-      .at_least(0);
+      .at_least(0)
+      .at_most(1024);
   return s;
 }
 
-void apply_override(YAML::Node root, const std::string& item) {
+// "observers[0].bins" and "observers.0.bins" name the same key.
+std::vector<std::string> split_key_path(const std::string& path) {
+  std::vector<std::string> keys;
+  std::string current;
+  for (char c : path) {
+    if (c == '.' || c == '[' || c == ']') {
+      if (!current.empty()) keys.push_back(current);
+      current.clear();
+    } else {
+      current += c;
+    }
+  }
+  if (!current.empty()) keys.push_back(current);
+  return keys;
+}
+
+// Applies one --set to the document; a problem goes to `errors`, labelled with the option.
+void apply_override(YAML::Node root, const std::string& item, ConfigErrors& errors) {
+  const std::string label = "--set " + item;
   const auto eq = item.find('=');
-  if (eq == std::string::npos || eq == 0) throw ConfigError("--set " + item + ": expected dotted.key=value");
-  const std::string path = item.substr(0, eq);
+  const std::string path = eq == std::string::npos ? "" : item.substr(0, eq);
+  const std::vector<std::string> keys = split_key_path(path);
+  if (eq == std::string::npos || keys.empty() || path.find_first_of(" \t") != std::string::npos ||
+      path.find("..") != std::string::npos) {
+    errors.add(
+        label, "",
+        "expected KEY=VALUE with a dotted key, e.g. --set run.duration=10 or --set observers[0].every=5");
+    return;
+  }
   YAML::Node value;
   try {
     value = YAML::Load(item.substr(eq + 1));
   } catch (const YAML::Exception& e) {
-    throw ConfigError("--set " + item + ": value is not valid YAML: " + e.msg);
+    errors.add(label, "", "the value is not valid YAML: " + e.msg);
+    return;
   }
-  std::vector<std::string> keys;
-  std::stringstream ss(path);
-  for (std::string k; std::getline(ss, k, '.');) keys.push_back(k);
-  // A list (observers, forces) is addressed by its index: observers.2.every=10.
-  auto index = [&](const std::string& key, std::size_t size) {
-    const bool digits = !key.empty() && key.find_first_not_of("0123456789") == std::string::npos;
-    if (!digits)
-      throw ConfigError("--set " + item + ": '" + key + "' addresses a list: expected an index 0.." +
-                        std::to_string(size ? size - 1 : 0));
-    const std::size_t idx = std::stoul(key);
-    if (idx >= size)
-      throw ConfigError("--set " + item + ": index " + key + " out of range (the list has " +
-                        std::to_string(size) + " entries)");
-    return idx;
-  };
+  if (!root.IsMap()) return;  // reported with the file
+  std::string walked;
   // Walk with reset() copies: yaml-cpp nodes are handles, assignment would overwrite.
   YAML::Node cur;
   cur.reset(root);
-  for (std::size_t i = 0; i + 1 < keys.size(); ++i) {
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    const std::string& key = keys[i];
+    const bool last = i + 1 == keys.size();
     YAML::Node next;
     if (cur.IsSequence()) {
-      next.reset(cur[index(keys[i], cur.size())]);
+      // A list (observers, forces) is addressed by its index: observers[2].every=10.
+      const bool digits =
+          !key.empty() && key.size() < 10 && key.find_first_not_of("0123456789") == std::string::npos;
+      const std::size_t size = cur.size();
+      if (!digits || std::stoul(key) >= size) {
+        errors.add(label, walked,
+                   size == 0 ? std::string("is an empty list")
+                             : "is a list: expected an index 0.." + std::to_string(size - 1) + ", got '" +
+                                   key + "'");
+        return;
+      }
+      if (last) {
+        cur[std::stoul(key)] = value;
+        errors.add_override(YAML::Node(), value, label);
+        return;
+      }
+      next.reset(cur[std::stoul(key)]);
+    } else if (cur.IsMap() || cur.IsNull()) {
+      if (last) {
+        cur[key] = value;
+        for (const auto& kv : cur)
+          if (kv.first.IsScalar() && kv.first.Scalar() == key)
+            errors.add_override(kv.first, kv.second, label);
+        return;
+      }
+      if (!cur[key]) {
+        // A section the file does not have: made here, so its keys are reported as the option.
+        cur[key] = YAML::Node(YAML::NodeType::Map);
+        for (const auto& kv : cur)
+          if (kv.first.IsScalar() && kv.first.Scalar() == key)
+            errors.add_override(kv.first, kv.second, label);
+      }
+      next.reset(cur[key]);
     } else {
-      next.reset(cur[keys[i]]);
+      errors.add(label, walked,
+                 "is a value (" + describe_yaml_value(cur) + "), not a section: '" + key +
+                     "' cannot be set inside it");
+      return;
     }
+    walked += (walked.empty() ? "" : ".") + key;
     cur.reset(next);
   }
-  if (cur.IsSequence())
-    cur[index(keys.back(), cur.size())] = value;
-  else
-    cur[keys.back()] = value;
 }
 
 // Validate a `{plugin: name, ...}` block of the given kind against that plugin's schema.
@@ -148,10 +199,21 @@ bool read_plugin_block(const YAML::Node& node, const std::string& kind, const st
 
 }  // namespace
 
-Experiment read_experiment(const std::string& file, const std::vector<std::string>& overrides,
-                           std::unique_ptr<PluginRegistry>& registry) {
-  YAML::Node root = load_yaml_file(file);
-  for (const auto& item : overrides) apply_override(root, item);
+namespace {
+
+// The document after loading: `registry` is made from the document's plugin paths unless
+// `given` is passed (re-reading a stored experiment with the registry already in use).
+Experiment parse_experiment(YAML::Node root, const std::string& file,
+                            const std::vector<std::string>& overrides,
+                            std::unique_ptr<PluginRegistry>& registry, const PluginRegistry* given) {
+  ConfigErrors errors(file);
+  if (!root.IsMap()) {
+    errors.add(
+        root, "(top level)",
+        "expected a map of sections (system, flow, hydro, run, ...), got " + describe_yaml_value(root));
+    errors.throw_if_any();
+  }
+  for (const auto& item : overrides) apply_override(root, item, errors);
   Experiment ex;
   ex.file = file;
   {
@@ -159,13 +221,12 @@ Experiment read_experiment(const std::string& file, const std::vector<std::strin
     emit << root;
     ex.resolved_yaml = emit.c_str();
   }
-  ConfigErrors errors(file);
-  if (!root.IsMap()) {
-    errors.add(root, "(top level)", "expected a map of sections (system, flow, hydro, run, ...)");
-    errors.throw_if_any();
-  }
   for (const auto& kv : root) {
-    const std::string key = kv.first.as<std::string>();
+    if (!kv.first.IsScalar()) {
+      errors.add(kv.first, "(top level)", "expected a section name, got " + describe_yaml_value(kv.first));
+      continue;
+    }
+    const std::string key = kv.first.Scalar();
     if (std::find(kTopKeys.begin(), kTopKeys.end(), key) == kTopKeys.end()) {
       const std::string hint = did_you_mean(key, kTopKeys);
       errors.add(kv.first, key, hint.empty() ? "unknown key" : "unknown key (did you mean '" + hint + "'?)");
@@ -176,39 +237,71 @@ Experiment read_experiment(const std::string& file, const std::vector<std::strin
   const YAML::Node plugins = root["plugins"];
   if (plugins) {
     const YAML::Node paths = plugins.IsMap() ? plugins["paths"] : YAML::Node();
-    if (!paths || !paths.IsSequence())
-      errors.add(plugins, "plugins.paths", "expected a list of directories");
-    else
-      for (const auto& p : paths) ex.plugin_paths.push_back(p.as<std::string>());
+    bool unknown = false;
+    if (plugins.IsMap())
+      for (const auto& kv : plugins)
+        if (!kv.first.IsScalar() || kv.first.Scalar() != "paths") {
+          const std::string key = kv.first.IsScalar() ? kv.first.Scalar() : std::string("?");
+          const std::string hint = did_you_mean(key, {"paths"});
+          errors.add(
+              kv.first, "plugins." + key,
+              hint.empty() ? "unknown key (known keys: paths)" : "unknown key (did you mean 'paths'?)");
+          unknown = true;
+        }
+    if ((!paths || !paths.IsSequence()) && !(unknown && !paths))
+      errors.add(plugins.IsMap() && paths ? paths : plugins, "plugins.paths",
+                 "expected a list of directories");
+    else if (paths)
+      for (std::size_t i = 0; i < paths.size(); ++i) {
+        if (paths[i].IsScalar())
+          ex.plugin_paths.push_back(paths[i].Scalar());
+        else
+          errors.add(paths[i], "plugins.paths[" + std::to_string(i) + "]",
+                     "expected a directory name, got " + describe_yaml_value(paths[i]));
+      }
   }
   const std::string dir = std::filesystem::path(file).parent_path().string();
-  registry = std::make_unique<PluginRegistry>(PluginRegistry::search_path(ex.plugin_paths, dir));
+  if (!given) {
+    registry = std::make_unique<PluginRegistry>(PluginRegistry::search_path(ex.plugin_paths, dir));
+    given = registry.get();
+  }
+  const PluginRegistry& plugins_found = *given;
 
-  auto section = [&](const char* key, bool required) -> YAML::Node {
+  // A section that is missing or not a map is reported once: the keys it would hold are then
+  // checked against `unreported` (their defaults still fill the Params).
+  ConfigErrors unreported(file);
+  auto section = [&](const char* key, bool required, ConfigErrors*& sink) -> YAML::Node {
     const YAML::Node n = root[key];
+    sink = &unreported;
     if (!n) {
       if (required) errors.add(root, key, "missing required section");
+      if (!required) sink = &errors;
       return YAML::Node(YAML::NodeType::Map);
     }
     if (!n.IsMap()) {
       errors.add(n, key, "expected a map, got " + describe_yaml_value(n));
       return YAML::Node(YAML::NodeType::Map);
     }
+    sink = &errors;
     return n;
   };
 
-  const YAML::Node sys = section("system", true);
-  const Params sp = validate_params(sys, system_schema(), "system", errors, {"shape", "init"});
+  ConfigErrors* system_errors = nullptr;
+  const YAML::Node sys = section("system", true, system_errors);
+  const Params sp = validate_params(sys, system_schema(), "system", *system_errors, {"shape", "init"});
+  ex.system_params = sp;
   if (sp.has("count")) ex.count = sp.integer("count");
   if (sp.has("volume_fraction")) ex.volume_fraction = sp.number("volume_fraction");
   if (sp.has("box_edge")) ex.box_edge = sp.number("box_edge");
   if (!sys["shape"])
-    errors.add(sys, "system.shape", "missing required key (a map with `plugin: sphere|dicolloid|cluster`)");
+    system_errors->add(sys, "system.shape",
+                       "missing required key (a map with `plugin: sphere|dicolloid|cluster`)");
   else
-    read_plugin_block(sys["shape"], "shape", "system.shape", *registry, errors, ex.shape);
+    read_plugin_block(sys["shape"], "shape", "system.shape", plugins_found, errors, ex.shape);
   {
     const YAML::Node init = sys["init"] ? sys["init"] : YAML::Node(YAML::NodeType::Map);
     const Params ip = validate_params(init, init_schema(), "system.init", errors);
+    ex.init_params = ip;
     if (ip.has("method")) {
       ex.init_method = ip.text("method");
       ex.init_seed = ip.integer("seed");
@@ -223,7 +316,10 @@ Experiment read_experiment(const std::string& file, const std::vector<std::strin
     }
   }
 
-  const Params fp = validate_params(section("flow", false), flow_schema(), "flow", errors);
+  ConfigErrors* flow_errors = nullptr;
+  const YAML::Node flow = section("flow", false, flow_errors);
+  const Params fp = validate_params(flow, flow_schema(), "flow", *flow_errors);
+  ex.flow_params = fp;
   if (fp.has("peclet")) {
     ex.peclet = fp.number("peclet");
     ex.brownian = fp.flag("brownian");
@@ -233,7 +329,7 @@ Experiment read_experiment(const std::string& file, const std::vector<std::strin
   if (!hydro)
     errors.add(root, "hydro", "missing required section (e.g. {plugin: fld})");
   else
-    read_plugin_block(hydro, "hydro", "hydro", *registry, errors, ex.hydro);
+    read_plugin_block(hydro, "hydro", "hydro", plugins_found, errors, ex.hydro);
 
   // `forces:` and `observers:` are lists of plugin blocks, each validated against its plugin.
   auto read_list = [&](const char* key, const char* kind, const ParamSchema* core_keys) {
@@ -246,7 +342,7 @@ Experiment read_experiment(const std::string& file, const std::vector<std::strin
     }
     for (std::size_t i = 0; i < list.size(); ++i) {
       PluginBlock b;
-      if (read_plugin_block(list[i], kind, std::string(key) + "[" + std::to_string(i) + "]", *registry,
+      if (read_plugin_block(list[i], kind, std::string(key) + "[" + std::to_string(i) + "]", plugins_found,
                             errors, b, core_keys))
         blocks.push_back(std::move(b));
     }
@@ -263,8 +359,10 @@ Experiment read_experiment(const std::string& file, const std::vector<std::strin
       ex.observers.push_back(ObserverBlock{std::move(b), every, start});
     }
 
-  const YAML::Node run = section("run", true);
-  const Params rp = validate_params(run, run_schema(), "run", errors);
+  ConfigErrors* run_errors = nullptr;
+  const YAML::Node run = section("run", true, run_errors);
+  const Params rp = validate_params(run, run_schema(), "run", *run_errors);
+  ex.run_params = rp;
   if (rp.has("dt")) ex.dt = rp.number("dt");
   if (rp.has("duration")) ex.duration = rp.number("duration");
   if (rp.has("time_unit")) {
@@ -288,11 +386,38 @@ Experiment read_experiment(const std::string& file, const std::vector<std::strin
   if (const YAML::Node out = root["output"]) {
     if (!out.IsScalar())
       errors.add(out, "output", "expected a file name, got " + describe_yaml_value(out));
-    else
-      ex.output = out.as<std::string>();
+    else {
+      ex.output = out.Scalar();
+      ex.output_location = errors.location(out);
+    }
   }
   errors.throw_if_any();
   return ex;
+}
+
+}  // namespace
+
+Experiment read_experiment(const std::string& file, const std::vector<std::string>& overrides,
+                           std::unique_ptr<PluginRegistry>& registry) {
+  return parse_experiment(load_yaml_file(file), file, overrides, registry, nullptr);
+}
+
+Experiment read_experiment(const std::string& file, const std::vector<std::string>& overrides,
+                           const PluginRegistry& registry) {
+  std::unique_ptr<PluginRegistry> unused;
+  return parse_experiment(load_yaml_file(file), file, overrides, unused, &registry);
+}
+
+Experiment read_stored_experiment(const std::string& yaml_text, const std::string& label,
+                                  const PluginRegistry& registry) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::Exception& e) {
+    throw ConfigError(label + ": the stored experiment is not valid YAML: " + e.msg);
+  }
+  std::unique_ptr<PluginRegistry> unused;
+  return parse_experiment(root, label, {}, unused, &registry);
 }
 
 std::string core_keys_help() {

@@ -51,19 +51,33 @@ struct Experiment {
   double dt = 0.0, duration = 0.0;  // in time_unit
   std::string time_unit;            // paper | diffusive | strain
   std::int64_t seed = 42;
-  std::string integrator;           // auto | euler_maruyama | rk3
-  std::string drift;                // midpoint | none
+  std::string integrator;  // auto | euler_maruyama | rk3
+  std::string drift;       // midpoint | none
   double skin = 0.3;
-  double checkpoint_every = 0.0;    // in time_unit; 0 = only at the end
+  double checkpoint_every = 0.0;  // in time_unit; 0 = only at the end
   std::int64_t threads = 0;
 
   std::string output;
+  std::string output_location;  // file:line:col of `output`
+
+  // The validated core sections, for the checks made after reading (RunCheck): each value
+  // knows where it came from (Params::origin).
+  Params system_params, init_params, flow_params, run_params;
 };
 
 // `overrides` are "dotted.key=value" strings applied before validation (sweeps).
 // Throws ConfigError with every problem found.
 Experiment read_experiment(const std::string& file, const std::vector<std::string>& overrides,
                            std::unique_ptr<PluginRegistry>& registry);
+
+// The same with plugins from an existing registry (the file's plugins.paths are not searched).
+Experiment read_experiment(const std::string& file, const std::vector<std::string>& overrides,
+                           const PluginRegistry& registry);
+
+// The resolved experiment stored in a checkpoint or result file (`label` names it in
+// messages), read with the plugins of `registry`. Throws ConfigError.
+Experiment read_stored_experiment(const std::string& yaml_text, const std::string& label,
+                                  const PluginRegistry& registry);
 
 // Human-readable description of the core keys, for `fldsim run --help` and the README.
 std::string core_keys_help();

@@ -17,7 +17,9 @@ void IsotropicResistance::configure(const System& system) {
   }
   const std::size_t stored = form_ == IsotropicForm::Sphere ? 1 : n;
   blocks_.assign(stored, Mat6::Zero());
-  factors_.assign(stored, Eigen::LLT<Mat6>(6));
+  // Copies of a computed factor: a default-constructed LLT leaves its ComputationInfo unset, and
+  // copying it reads an indeterminate enum (UBSan: "load of value ..., not a valid value").
+  factors_.assign(stored, Eigen::LLT<Mat6>(Mat6::Identity()));
   strain_.assign(n, Vec6::Zero());
   if (form_ == IsotropicForm::Sphere) {
     const double mu = system.physics().viscosity;

@@ -29,7 +29,7 @@ void describe_lubrication_params(ParamSchema& s) {
            "counter-rotation (pump) coefficient: Jeffrey-Onishi (3/40) or LAMMPS lubricateU (3/160)");
   s.flag("twist", true, "include the twist mode (relative rotation about the line of centres)");
   s.number("tolerance", 1e-6, "", "relative residual of the conjugate-gradient solve").greater(0.0).less(1.0);
-  s.integer("max_iterations", 1000L, "", "conjugate-gradient iteration limit").at_least(1);
+  s.integer("max_iterations", 1000L, "", "conjugate-gradient iteration limit").at_least(1).at_most(1000000);
   s.choice("preconditioner", std::string("incomplete_cholesky"), {"incomplete_cholesky", "block_jacobi"},
            "CG preconditioner: block IC(0) on the pair pattern (fewest iterations; sweeps parallel by "
            "dependency levels) or block Jacobi (parallel; more iterations)");

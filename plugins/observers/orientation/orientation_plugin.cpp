@@ -9,7 +9,8 @@ class OrientationPlugin : public fldsim::observers::OrientationObserver {
   static void describe(fldsim::ParamSchema& s) {
     s.integer("bins", 18, "",
               "theta bins over [0, pi/2]; phi gets twice as many over [-pi/2, pi/2] (same width)")
-        .at_least(1);
+        .at_least(1)
+        .at_most(3600);
   }
   explicit OrientationPlugin(const fldsim::Params& p) : OrientationObserver(config(p)) {}
 

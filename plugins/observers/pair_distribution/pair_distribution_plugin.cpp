@@ -14,7 +14,8 @@ class PairDistributionPlugin : public fldsim::observers::PairDistributionObserve
   static void describe(fldsim::ParamSchema& s) {
     s.number("range", 5.0, "a", "half width of the maps and largest r of g(r) (at most half the box edge)")
         .greater(0.0);
-    s.integer("bins", 100, "", "map cells per axis; g(r) has bins/2 shells").at_least(2);
+    // bins^2 cells per map: at most 2000 keeps three maps under 100 MB.
+    s.integer("bins", 100, "", "map cells per axis; g(r) has bins/2 shells").at_least(2).at_most(2000);
     s.number("slab_half", 1.0, "a", "maps average over |third coordinate| < slab_half (paper: a)")
         .greater(0.0);
     // A text value until the parameter schema has a list-of-choices type: YAML `[xy, xz]` is a

@@ -1,0 +1,46 @@
+#include "run/StopRequest.hpp"
+
+#include <signal.h>
+
+#include <csignal>
+
+namespace fldsim {
+
+namespace {
+
+volatile std::sig_atomic_t received = 0;
+
+extern "C" void on_stop_signal(int sig) {
+  if (received != 0) {
+    // Asked twice: stop now.
+    std::signal(sig, SIG_DFL);
+    std::raise(sig);
+    return;
+  }
+  received = sig;
+}
+
+}  // namespace
+
+void StopRequest::install() {
+  struct sigaction action {};
+  action.sa_handler = on_stop_signal;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESTART;  // an interrupted write or read resumes; the flag is read between steps
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+}
+
+int StopRequest::signal() {
+  return received;
+}
+
+const char* StopRequest::signal_name(int sig) {
+  return sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "a signal";
+}
+
+void StopRequest::reset() {
+  received = 0;
+}
+
+}  // namespace fldsim
