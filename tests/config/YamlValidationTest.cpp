@@ -92,7 +92,9 @@ const BrokenCase kBroken[] = {
      "FILE:5:7: hydro.spheres[1]: expected a list of 4 numbers, got a list of 3"},
     {"text given a list", "hydro:\n  a: 1\n  label: [x]\n",
      "FILE:3:10: hydro.label: expected a string, got a list"},
-    {"duplicate key", "hydro:\n  a: 1\n  a: 2\n", "FILE:3:3: hydro.a: duplicate key"},
+    {"duplicate key", "hydro:\n  a: 1\n  a: 2\n",
+     "FILE:3:3: hydro.a: duplicate key (first given at line 2); YAML keeps only one, so this one would be "
+     "silently lost"},
     {"block is not a map", "hydro: fld\n",
      "FILE:1:8: hydro: expected a map of parameters, got 'fld'\n"
      "FILE:1:8: hydro.a: missing required key (a number > 0, in a)"},

@@ -90,10 +90,10 @@ TEST(ExperimentRun, OverrideOfAListByNameIsAOneLineError) {
   write(d / "e.yaml", experiment((d / "out.h5").string(), 0.02));
   const Command c = run("check " + (d / "e.yaml").string() + " --set forces.x=1");
   EXPECT_EQ(c.code, 2);
-  EXPECT_EQ(c.output, "--set forces.x=1: 'x' addresses a list: expected an index 0..0\n");
+  EXPECT_EQ(c.output, "--set forces.x=1: forces: is a list: expected an index 0..0, got 'x'\n");
   const Command far = run("check " + (d / "e.yaml").string() + " --set forces.3.prefactor=1");
   EXPECT_EQ(far.code, 2);
-  EXPECT_EQ(far.output, "--set forces.3.prefactor=1: index 3 out of range (the list has 1 entries)\n");
+  EXPECT_EQ(far.output, "--set forces.3.prefactor=1: forces: has 1 entry: index 3 is out of range\n");
 }
 
 // A check only the plugin can make (in its constructor) is made by `check` too, not first at `run`.
@@ -113,8 +113,10 @@ TEST(ExperimentRun, ExistingResultIsNotOverwritten) {
   write(d / "out.h5", "precious");
   write(d / "e.yaml", experiment((d / "out.h5").string(), 0.002));
   const Command c = run("run " + (d / "e.yaml").string());
-  EXPECT_EQ(c.code, 1);
-  EXPECT_NE(c.output.find("refusing to overwrite"), std::string::npos) << c.output;
+  // Refused by the checks before the run, as bad input (exit 2), at the `output` key.
+  EXPECT_EQ(c.code, 2);
+  EXPECT_NE(c.output.find("out.h5' exists; give --overwrite to replace it, or another -o"), std::string::npos)
+      << c.output;
   std::ifstream in(d / "out.h5");
   std::string content;
   std::getline(in, content);

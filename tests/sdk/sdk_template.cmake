@@ -37,7 +37,7 @@ endif()
 # with the documented one-line error and exit code 2.
 set(yaml ${template}/examples/yukawa.yaml)
 sdk_run("fldsim check yukawa.yaml" OUT out COMMAND ${FLDSIM} check ${yaml})
-sdk_expect("check says valid" "${out}" "valid (27 x sphere, hydro free_draining, 1 force(s)")
+sdk_expect("check says valid" "${out}" "valid (27 x sphere, phi = 0.2 (box edge 8.269 a), hydro free_draining, 1 force(s)")
 file(MAKE_DIRECTORY ${WORK}/yukawa_run)
 file(READ ${yaml} text)
 string(REPLACE "debye_length: 0.1" "debye_length: -0.1" text "${text}")

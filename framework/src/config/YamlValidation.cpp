@@ -287,7 +287,7 @@ std::optional<std::pair<int, int>> invalid_utf8(const std::string& text) {
 // Every map of the document: duplicate keys (yaml-cpp keeps both; a lookup would see only the
 // first), and a size bound so that aliases cannot expand into an enormous tree.
 void check_tree(const std::string& path, const YAML::Node& node, std::size_t depth, std::size_t& count,
-                ConfigErrors& errors) {
+                ConfigErrors& errors, const std::string& key_path = "") {
   if (++count > kMaxNodes || depth > kMaxDepth) {
     if (count == kMaxNodes + 1 || depth == kMaxDepth + 1)
       errors.add(node, "",
@@ -297,7 +297,9 @@ void check_tree(const std::string& path, const YAML::Node& node, std::size_t dep
     throw std::length_error("too large");
   }
   if (node.IsSequence()) {
-    for (const auto& child : node) check_tree(path, child, depth + 1, count, errors);
+    std::size_t i = 0;
+    for (const auto& child : node)
+      check_tree(path, child, depth + 1, count, errors, key_path + "[" + std::to_string(i++) + "]");
   } else if (node.IsMap()) {
     std::vector<std::pair<std::string, YAML::Mark>> seen;
     for (const auto& kv : node) {
@@ -305,14 +307,15 @@ void check_tree(const std::string& path, const YAML::Node& node, std::size_t dep
         const std::string& key = kv.first.Scalar();
         const auto it = std::find_if(seen.begin(), seen.end(), [&](const auto& p) { return p.first == key; });
         if (it != seen.end())
-          errors.add(kv.first, key,
+          errors.add(kv.first, dotted(key_path, key),
                      "duplicate key (first given at line " + std::to_string(it->second.line + 1) +
                          "); YAML keeps only one, so this one would be silently lost");
         else
           seen.emplace_back(key, kv.first.Mark());
       }
-      check_tree(path, kv.first, depth + 1, count, errors);
-      check_tree(path, kv.second, depth + 1, count, errors);
+      const std::string child = kv.first.IsScalar() ? dotted(key_path, kv.first.Scalar()) : key_path;
+      check_tree(path, kv.first, depth + 1, count, errors, child);
+      check_tree(path, kv.second, depth + 1, count, errors, child);
     }
   }
 }

@@ -127,10 +127,11 @@ void apply_override(YAML::Node root, const std::string& item, ConfigErrors& erro
           !key.empty() && key.size() < 10 && key.find_first_not_of("0123456789") == std::string::npos;
       const std::size_t size = cur.size();
       if (!digits || std::stoul(key) >= size) {
+        const std::string entries = std::to_string(size) + (size == 1 ? " entry" : " entries");
         errors.add(label, walked,
-                   size == 0 ? std::string("is an empty list")
-                             : "is a list: expected an index 0.." + std::to_string(size - 1) + ", got '" +
-                                   key + "'");
+                   !digits ? "is a list: expected an index 0.." + std::to_string(size ? size - 1 : 0) +
+                                 ", got '" + key + "'"
+                           : "has " + entries + ": index " + key + " is out of range");
         return;
       }
       if (last) {

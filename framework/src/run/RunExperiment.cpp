@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <iomanip>
+#include <iostream>
 #include <ostream>
 #include <sstream>
 
@@ -10,6 +11,7 @@
 #include "io/Hdf5ResultSink.hpp"
 #include "run/Provenance.hpp"
 #include "run/Simulation.hpp"
+#include "run/StopRequest.hpp"
 
 namespace fldsim {
 namespace {
@@ -18,6 +20,30 @@ std::string format_time(double seconds) {
   std::ostringstream s;
   s << std::fixed << std::setprecision(1) << seconds << " s";
   return s.str();
+}
+
+// After SIGINT/SIGTERM: the observers write what they have, the state goes to the checkpoint,
+// the result file is closed and renamed (readable, marked as interrupted). Exit 128 + signal.
+int stop_early(Simulation& sim, Hdf5ResultSink& sink, const std::string& checkpoint_path,
+               const Experiment& ex, int signal) {
+  const std::int64_t step = sim.system().step(), total = sim.settings().total_steps;
+  const Checkpoint state = sim.capture();  // before the observers summarise
+  std::string incomplete;
+  try {
+    sim.finish();
+  } catch (const Error& e) {
+    incomplete = e.what();  // e.g. too few samples for a block average: the time series stay
+  }
+  std::ostringstream status;
+  status << "interrupted by " << StopRequest::signal_name(signal) << " at step " << step << " of " << total;
+  sink.write_attribute("/parameters", "run_status", status.str());
+  write_checkpoint(checkpoint_path, state);
+  sink.commit();
+  std::cerr << "fldsim: " << status.str() << "; results so far in " << sink.path() << ", state in "
+            << checkpoint_path << "; continue with: fldsim run " << ex.file << " --resume " << checkpoint_path
+            << " -o NEW.h5\n";
+  if (!incomplete.empty()) std::cerr << "fldsim: results so far lack some summaries: " << incomplete << "\n";
+  return 128 + signal;
 }
 
 }  // namespace
@@ -31,6 +57,8 @@ int run_experiment(const Experiment& ex, const PluginRegistry& registry, const R
   Hdf5ResultSink sink(output, opt.overwrite);
   Experiment run = ex;
   run.output = output;
+  // From here on SIGINT/SIGTERM end the run after the current step, with everything kept.
+  StopRequest::install();
   Checkpoint resume;
   if (!opt.resume.empty()) resume = read_checkpoint(opt.resume);
   const auto sim = Simulation::from_experiment(run, registry, sink, log,
@@ -41,11 +69,13 @@ int run_experiment(const Experiment& ex, const PluginRegistry& registry, const R
   const std::int64_t checkpoint_steps =
       ex.checkpoint_every > 0 ? std::max<std::int64_t>(1, std::llround(ex.checkpoint_every / ex.dt)) : 0;
   const auto loop0 = std::chrono::steady_clock::now();
-  while (!sim->finished()) {
+  while (!sim->finished() && StopRequest::signal() == 0) {
     sim->step();
     if (checkpoint_steps > 0 && sim->system().step() % checkpoint_steps == 0)
       write_checkpoint(checkpoint_path, sim->capture());
   }
+  const int stop = StopRequest::signal();
+  if (stop != 0) return stop_early(*sim, sink, checkpoint_path, ex, stop);
   sim->finish();
   write_checkpoint(checkpoint_path, sim->capture());
   sink.commit();

@@ -27,10 +27,12 @@ DiffusionStatistics::DiffusionStatistics(std::vector<std::int64_t> lag_steps, st
     throw std::invalid_argument("diffusion: lags must be positive and increasing");
   const std::size_t slots = static_cast<std::size_t>(lag_steps_.back() / spacing_ + 2);
   origins_.resize(slots);
+  // Zeros, not Eigen's uninitialised default: inactive origins are saved in checkpoints too, and
+  // garbage there made two checkpoints of the same state differ (found by the resume test).
   for (auto& o : origins_) {
-    o.nonaffine.resize(bodies);
-    o.total.resize(bodies);
-    o.directors.resize(bodies);
+    o.nonaffine.assign(bodies, Vec3::Zero());
+    o.total.assign(bodies, Vec3::Zero());
+    o.directors.assign(bodies, Vec3::Zero());
     o.values.resize(lag_steps_.size());
   }
   msd_na_.resize(lags());
