@@ -18,7 +18,7 @@
 #include "oracle/OracleCommand.hpp"
 #include "plugins/PluginRegistry.hpp"
 #include "run/Experiment.hpp"
-#include "run/Simulation.hpp"
+#include "run/RunExperiment.hpp"
 
 namespace {
 
