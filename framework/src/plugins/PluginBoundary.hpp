@@ -86,7 +86,7 @@ class GuardedHydro final : public HydroModel {
   std::string who_;
 };
 
-class GuardedForce final : public ForceLaw {
+class GuardedForce : public ForceLaw {
  public:
   GuardedForce(std::shared_ptr<ForceLaw> inner, std::string who)
       : in_(std::move(inner)), who_(std::move(who)) {}
@@ -97,9 +97,23 @@ class GuardedForce final : public ForceLaw {
     plugin_call(who_, "add()", [&] { in_->add(s, p, wrench, virial); });
   }
 
- private:
+ protected:
   std::shared_ptr<ForceLaw> in_;
   std::string who_;
+};
+
+// A force law that declares its pair energy (API 2.1) keeps declaring it through the guard, so
+// pair_energy_of() finds it.
+class GuardedEnergyForce final : public GuardedForce, public PairEnergy {
+ public:
+  GuardedEnergyForce(std::shared_ptr<ForceLaw> inner, const PairEnergy& energy, std::string who)
+      : GuardedForce(std::move(inner), std::move(who)), energy_(energy) {}
+  double pair_energy(const System& s, const NodePair& pair) const override {
+    return plugin_call(who_, "pair_energy()", [&] { return energy_.pair_energy(s, pair); });
+  }
+
+ private:
+  const PairEnergy& energy_;  // the inner object, kept alive by in_
 };
 
 class GuardedObserver final : public Observer {
@@ -139,9 +153,12 @@ std::shared_ptr<T> guard_plugin_object(std::shared_ptr<T> inner, const std::stri
     out = std::make_shared<GuardedShape>(std::move(inner), who);
   else if constexpr (std::is_same_v<T, HydroModel>)
     out = std::make_shared<GuardedHydro>(std::move(inner), who);
-  else if constexpr (std::is_same_v<T, ForceLaw>)
-    out = std::make_shared<GuardedForce>(std::move(inner), who);
-  else if constexpr (std::is_same_v<T, Observer>)
+  else if constexpr (std::is_same_v<T, ForceLaw>) {
+    if (const PairEnergy* energy = pair_energy_of(*inner))
+      out = std::make_shared<GuardedEnergyForce>(inner, *energy, who);
+    else
+      out = std::make_shared<GuardedForce>(std::move(inner), who);
+  } else if constexpr (std::is_same_v<T, Observer>)
     out = std::make_shared<GuardedObserver>(std::move(inner), who);
   else
     return inner;
