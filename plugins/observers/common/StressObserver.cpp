@@ -38,10 +38,10 @@ void StressObserver::sample(const StepView& view, ResultSink& out) {
   const auto step = view.system.step();
   const double t = view.system.time();
   const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> row_major = parts[kParticleTotal];
-  out.append_sample("observables/stress/particle_stress", step, t, {3, 3}, row_major.data(), stress_unit());
+  out.append_sample("timeseries/stress/particle_stress", step, t, {3, 3}, row_major.data(), stress_unit());
   if (shear_rate_ != 0.0) {
     const double eta = bulk.relative_viscosity(*view.stress);
-    out.append_sample("observables/stress/eta_r", step, t, {}, &eta, "1");
+    out.append_sample("timeseries/stress/eta_r", step, t, {}, &eta, "1");
   }
 }
 
