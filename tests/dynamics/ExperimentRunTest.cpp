@@ -96,6 +96,23 @@ TEST(ExperimentRun, OverrideOfAListByNameIsAOneLineError) {
   EXPECT_EQ(far.output, "--set forces.3.prefactor=1: forces: has 1 entry: index 3 is out of range\n");
 }
 
+// The form errors print (forces[0].plugin) addresses the same entry as the dotted one.
+TEST(ExperimentRun, OverrideAcceptsTheIndexFormThatErrorsPrint) {
+  const fs::path d = scratch("override-index");
+  write(d / "e.yaml", experiment((d / "out.h5").string(), 0.02));
+  const Command bracket = run("check " + (d / "e.yaml").string() + " --set forces[0].plugin=nosuch");
+  const Command dotted = run("check " + (d / "e.yaml").string() + " --set forces.0.plugin=nosuch");
+  EXPECT_EQ(bracket.code, 2);
+  EXPECT_NE(bracket.output.find("forces[0].plugin: no force plugin named 'nosuch'"), std::string::npos)
+      << bracket.output;
+  // The same message after the option as typed.
+  auto after_option = [](const std::string& s) { return s.substr(s.find(": ")); };
+  EXPECT_EQ(after_option(bracket.output), after_option(dotted.output));
+  const Command far = run("check " + (d / "e.yaml").string() + " --set forces[3].prefactor=1");
+  EXPECT_EQ(far.output, "--set forces[3].prefactor=1: forces: has 1 entry: index 3 is out of range\n");
+  EXPECT_EQ(run("check " + (d / "e.yaml").string() + " --set forces[0].prefactor=20").code, 0);
+}
+
 // A check only the plugin can make (in its constructor) is made by `check` too, not first at `run`.
 TEST(ExperimentRun, CheckConstructsPluginsSoTheirOwnChecksFail) {
   const fs::path d = scratch("plugin-check");

@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <filesystem>
+#include <fstream>
 #include <set>
 #include <sstream>
 
@@ -217,6 +218,11 @@ Experiment parse_experiment(YAML::Node root, const std::string& file,
   for (const auto& item : overrides) apply_override(root, item, errors);
   Experiment ex;
   ex.file = file;
+  ex.overrides = overrides;
+  {
+    std::ifstream in(file, std::ios::binary);
+    ex.source_text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
   {
     YAML::Emitter emit;
     emit << root;
