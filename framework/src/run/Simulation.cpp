@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <iomanip>
 #include <ostream>
 #include <sstream>
@@ -206,9 +207,26 @@ int run_experiment(const Experiment& ex, const PluginRegistry& registry, const R
   const std::int64_t total_steps = std::int64_t(std::llround(ex.duration / ex.dt));
   const std::int64_t checkpoint_steps =
       ex.checkpoint_every > 0 ? std::max<std::int64_t>(1, std::llround(ex.checkpoint_every / ex.dt)) : 0;
-  log << "hydro: " << ex.hydro.name << "; integrator: " << integrator->describe() << "; dt = " << ex.dt << " "
-      << unit_name << ", " << total_steps << " steps; pair range " << range << " a + skin " << ex.skin
-      << " a\n"
+  StepControlSettings control;
+  control.adaptive = ex.dt_auto;
+  control.frame = dt;
+  control.dt_min = ex.dt_min * time_scale;
+  control.tolerance = ex.tolerance;
+  control.reject_at = ex.reject_at;
+  control.refine = ex.refine;
+  control.order = integrator->error_order();
+  StepGuard guard;
+  guard.max_overlap = ex.max_overlap;
+  log << "hydro: " << ex.hydro.name << "; integrator: " << integrator->describe() << "; ";
+  if (ex.dt_auto)
+    log << "dt: auto (adaptive, local error <= " << ex.tolerance << " a, steps up to dt_max = " << ex.dt
+        << " " << unit_name << "), " << total_steps << " frames of dt_max";
+  else
+    log << "dt = " << ex.dt << " " << unit_name << ", " << total_steps << " steps";
+  if (ex.refine > 0)
+    log << ", each in " << (1 << ex.refine) << " equal steps on its Brownian path (run.refine)";
+  log << "; guard: overlap > " << ex.max_overlap << " a rejects a step; pair range " << range << " a + skin "
+      << ex.skin << " a\n"
       << "threads: " << threads.threads << " (" << threads.reason << ")\n";
   for (const auto& w : threads.warnings) log << "warning: " << w << "\n";
   for (const auto& s : skipped) log << "skipped: " << s << "\n";
@@ -259,6 +277,7 @@ int run_experiment(const Experiment& ex, const PluginRegistry& registry, const R
       }
     }
 
+  std::function<std::vector<double>()> step_state;  // set once the step loop exists
   auto write_checkpoint_now = [&](const std::string& path) {
     Checkpoint c;
     c.positions = sys.positions();
@@ -276,6 +295,7 @@ int run_experiment(const Experiment& ex, const PluginRegistry& registry, const R
       std::vector<double> state = observers[i]->save_state();
       if (!state.empty()) c.blobs[observer_key(i)] = std::move(state);
     }
+    if (step_state) c.blobs["run.steps"] = step_state();
     write_checkpoint(path, c);
   };
   const std::string checkpoint_path = output + ".checkpoint";
@@ -285,7 +305,13 @@ int run_experiment(const Experiment& ex, const PluginRegistry& registry, const R
   const auto loop0 = std::chrono::steady_clock::now();
   const std::int64_t first = sys.step();
   StepLoop steps(sys, *integrator, evaluator, list, observers, info, request.brownian,
-                 !use_rk3 && ex.drift == "midpoint");
+                 !use_rk3 && ex.drift == "midpoint", control, guard, &log);
+  const std::string steps_key = "run.steps";
+  if (!opt.resume.empty()) {
+    const auto it = resume.blobs.find(steps_key);
+    if (it != resume.blobs.end()) steps.restore_state(it->second);
+  }
+  step_state = [&] { return steps.save_state(); };
   ThreadTrial trial(threads.threads,
                     ThreadTrial::should_run(threads.threads, threads.automatic, total_steps - first));
   if (trial.running())
@@ -296,7 +322,14 @@ int run_experiment(const Experiment& ex, const PluginRegistry& registry, const R
     if (trial.running()) omp_set_num_threads(trial.threads_for_next_step());
 #endif
     const auto step0 = std::chrono::steady_clock::now();
-    steps.step(sink);
+    try {
+      steps.step(sink);
+    } catch (const StepFailure& e) {
+      // The loop put the system back to the start of the frame: resumable from there.
+      write_checkpoint_now(checkpoint_path);
+      log << "steps: " << steps.statistics().text(time_scale, unit_name) << "\n";
+      throw Error(std::string(e.what()) + "; checkpoint at that time: " + checkpoint_path);
+    }
     if (trial.running() &&
         trial.record(std::chrono::duration<double>(std::chrono::steady_clock::now() - step0).count())) {
 #ifdef _OPENMP
@@ -307,6 +340,7 @@ int run_experiment(const Experiment& ex, const PluginRegistry& registry, const R
     if (checkpoint_steps > 0 && sys.step() % checkpoint_steps == 0) write_checkpoint_now(checkpoint_path);
   }
   for (auto& o : observers) o->finish(info, sink);
+  steps.statistics().write(sink, time_scale, unit_name);
   write_checkpoint_now(checkpoint_path);
   sink.commit();
 
@@ -318,6 +352,8 @@ int run_experiment(const Experiment& ex, const PluginRegistry& registry, const R
       << (done > 0 ? double(evaluator.total_iterations() - cg_first) / double(done) : 0.0)
       << " CG iterations/step (all solves), " << list.rebuilds() - rebuilds_first
       << " neighbour rebuilds); total " << format_time(wall_s) << "\n"
+      << "steps: " << steps.statistics().text(time_scale, unit_name) << "; " << steps.overlap_frames()
+      << " of " << done << " frames ended with an overlap\n"
       << "results: " << output << "   (fldsim summary " << output << "; /usr/bin/python3 tools/plot_run.py "
       << output << ")\ncheckpoint: " << checkpoint_path << "\n";
   // Frequent rebuilds mean the nodes' Brownian steps are comparable to the skin (the affine shear
