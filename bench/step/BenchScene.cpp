@@ -91,8 +91,7 @@ Params plugin_params(const std::string& kind, const std::string& name, const std
   return p;
 }
 
-void BenchScene::start_configuration(const SceneSpec& spec) {
-  System& sys = *system_;
+void BenchScene::start_configuration(const SceneSpec& spec, System& sys) {
   const std::string path = spec.cache_dir.empty() ? "" : spec.cache_dir + "/" + cache_name(spec);
   if (!path.empty() && read_cache(path, sys)) {
     start_note_ = "cached " + path;
@@ -123,58 +122,47 @@ void BenchScene::start_configuration(const SceneSpec& spec) {
 BenchScene::BenchScene(const SceneSpec& spec, const std::vector<ObserverSpec>& observers) {
   const std::string shape_yaml =
       spec.shape == "dicolloid" ? "{a: 1, b: 1, c: " + std::to_string(spec.c) + "}" : std::string("{a: 1}");
-  shape_ = registry().create<Shape>("shape", spec.shape, plugin_params("shape", spec.shape, shape_yaml));
+  auto shape = registry().create<Shape>("shape", spec.shape, plugin_params("shape", spec.shape, shape_yaml));
   Physics ph;
   ph.kT = spec.brownian ? 1.0 : 0.0;
   ph.shear_rate = spec.peclet;
   ph.volume_fraction = spec.phi;
-  const double edge = std::cbrt(double(spec.count) * shape_->volume() / spec.phi);
-  system_ = std::make_unique<System>(shape_, spec.count, edge, ph);
-  start_configuration(spec);
-
-  // The paper's time unit: 1/gammadot for Pe >= 1, a^2/D0 below (run/Simulation.cpp).
-  dt_ = spec.dt > 0.0 ? spec.dt : spec.peclet >= 1.0 ? spec.dt_paper / spec.peclet : spec.dt_paper;
+  const double edge = std::cbrt(double(spec.count) * shape->volume() / spec.phi);
+  SimulationParts parts;
+  parts.system = std::make_unique<System>(shape, spec.count, edge, ph);
+  start_configuration(spec, *parts.system);
 
   hydro_ =
       registry().create<HydroModel>("hydro", spec.hydro, plugin_params("hydro", spec.hydro, spec.hydro_yaml));
   timed_ = std::make_shared<TimedHydro>(hydro_);
+  parts.hydro_name = spec.hydro;
+  parts.hydro = timed_;
   const std::string rep = "{prefactor: " + std::to_string(spec.repulsion) + "}";
-  forces_.push_back(
+  parts.forces.push_back(
       registry().create<ForceLaw>("force", "repulsion", plugin_params("force", "repulsion", rep)));
-
-  info_.total_steps = 1000000;
-  info_.dt = dt_;
-  info_.time_unit = spec.peclet >= 1.0 ? "1/gammadot" : "a^2/D0";
-  info_.time_scale = spec.peclet >= 1.0 ? 1.0 / spec.peclet : 1.0;
-  info_.output_path = "bench";
-  info_.seed = spec.seed;
-  bool need_stress = false;
-  for (const auto& o : observers) {
+  for (std::size_t i = 0; i < observers.size(); ++i) {
+    const ObserverSpec& o = observers[i];
     auto ob = registry().create<Observer>("observer", o.plugin, plugin_params("observer", o.plugin, o.yaml));
     ob->set_schedule(o.every, 0.0);
-    need_stress = need_stress || ob->needs().stress;
-    observers_.push_back(ob);
+    parts.observers.push_back(ob);
+    parts.observer_keys.push_back("observers[" + std::to_string(i) + "]." + o.plugin);
   }
 
-  double range = hydro_->pair_range(*system_);
-  for (const auto& f : forces_) range = std::max(range, f->range(*system_));
-  list_.configure(range, spec.skin);
-  system_->update_nodes();
-  list_.update(*system_);
-  HydroRequest request;
-  request.brownian = ph.kT > 0.0;
-  request.shear = ph.shear_rate != 0.0;
-  request.stresslets = need_stress;
-  skipped_ = timed_->configure(*system_, request);
-  if (!need_stress) skipped_.push_back("no interparticle virial (no stress observer)");
-  integrator_ =
-      std::make_unique<EulerMaruyama>(spec.seed, request.brownian, DriftScheme::Midpoint, spec.count);
-  evaluator_ = std::make_unique<VelocityEvaluator>(timed_, forces_, list_, spec.count);
-  for (auto& o : observers_) o->begin(*system_, info_, sink_);
-  steps_ = std::make_unique<StepLoop>(*system_, *integrator_, *evaluator_, list_, observers_, info_,
-                                      request.brownian, true);
+  SimulationSettings settings;
+  // The paper's time unit: 1/gammadot for Pe >= 1, a^2/D0 below (run/RunUnits.cpp).
+  settings.dt = spec.dt > 0.0 ? spec.dt : spec.peclet >= 1.0 ? spec.dt_paper / spec.peclet : spec.dt_paper;
+  settings.total_steps = 1000000;
+  settings.integrator = "euler_maruyama";  // with the midpoint drift stage, also at kT = 0
+  settings.drift = "midpoint";
+  settings.skin = spec.skin;
+  settings.seed = spec.seed;
+  settings.time_unit = spec.peclet >= 1.0 ? "1/gammadot" : "a^2/D0";
+  settings.time_scale = spec.peclet >= 1.0 ? 1.0 / spec.peclet : 1.0;
+  settings.user_dt = settings.dt / settings.time_scale;
+  settings.output_path = "bench";
+  // The benchmark sets the threads itself (OMP_NUM_THREADS, omp_set_num_threads).
+  settings.threads.reason = "set by the benchmark";
+  simulation_ = std::make_unique<Simulation>(std::move(parts), std::move(settings), sink_, no_log_);
 }
-
-void BenchScene::step() { steps_->step(sink_); }
 
 }  // namespace fldsim::bench

@@ -1,7 +1,8 @@
 // A benchmark scene: N bodies of one shape at volume fraction phi, made with the real plugins
 // (PluginRegistry over the build's plugin directory), started from a quick hard-body
-// configuration, with FLD (or another hydro plugin), the paper's repulsion, Euler-Maruyama with
-// the midpoint drift, and optional observers, stepped the way run/Simulation.cpp steps a run.
+// configuration, with FLD (or another hydro plugin, wrapped in TimedHydro), the paper's repulsion,
+// Euler-Maruyama with the midpoint drift, and optional observers: the parts of the same
+// Simulation that `fldsim run` steps, so the benchmarks time the step users run.
 //
 // Quick start (a full hard-body MC is too slow for N = 27000 at phi = 0.5): spheres whose N is a
 // cube start on a simple cubic lattice at the target density when its spacing leaves a gap, any
@@ -11,17 +12,15 @@
 #pragma once
 
 #include <memory>
+#include <ostream>
 #include <string>
 #include <vector>
 
 #include "TimedHydro.hpp"
-#include "dynamics/TimeIntegrator.hpp"
-#include "dynamics/VelocityEvaluator.hpp"
 #include "fldsim/observer.hpp"
 #include "fldsim/results.hpp"
-#include "geometry/CellNeighbourList.hpp"
 #include "plugins/PluginRegistry.hpp"
-#include "run/StepLoop.hpp"
+#include "run/Simulation.hpp"
 
 namespace fldsim::bench {
 
@@ -70,41 +69,33 @@ class BenchScene {
  public:
   BenchScene(const SceneSpec& spec, const std::vector<ObserverSpec>& observers);
 
-  // One time step exactly as run_experiment takes it (StepLoop).
-  void step();
+  // One time step exactly as `fldsim run` takes it (Simulation::step).
+  void step() { simulation_->step(); }
 
-  System& system() { return *system_; }
-  geometry::CellNeighbourList& neighbours() { return list_; }
-  VelocityEvaluator& evaluator() { return *evaluator_; }
+  Simulation& simulation() { return *simulation_; }
+  System& system() { return simulation_->system(); }
+  geometry::CellNeighbourList& neighbours() { return simulation_->neighbours(); }
+  VelocityEvaluator& evaluator() { return simulation_->evaluator(); }
   TimedHydro& hydro() { return *timed_; }
   std::shared_ptr<HydroModel> hydro_plugin() { return hydro_; }
-  const std::vector<std::shared_ptr<ForceLaw>>& forces() const { return forces_; }
-  std::vector<std::shared_ptr<Observer>>& observers() { return observers_; }
-  const RunInfo& run_info() const { return info_; }
-  double dt() const { return dt_; }
-  const std::vector<std::string>& skipped() const { return skipped_; }
+  const std::vector<std::shared_ptr<ForceLaw>>& forces() const { return simulation_->forces(); }
+  std::vector<std::shared_ptr<Observer>>& observers() { return simulation_->observers(); }
+  const RunInfo& run_info() const { return simulation_->run_info(); }
+  double dt() const { return simulation_->settings().dt; }
+  const std::vector<std::string>& skipped() const { return simulation_->skipped(); }
   const std::string& start_note() const { return start_note_; }
   // Time spent in the observers' sample calls, seconds, since construction (the stress pieces
   // are computed inside the step: stresslets and the extra solve count as hydro time).
-  double observer_seconds() const { return steps_->observer_seconds(); }
+  double observer_seconds() const { return simulation_->step_loop().observer_seconds(); }
 
  private:
-  void start_configuration(const SceneSpec& spec);
+  void start_configuration(const SceneSpec& spec, System& sys);
 
-  std::shared_ptr<Shape> shape_;
-  std::unique_ptr<System> system_;
   std::shared_ptr<HydroModel> hydro_;
   std::shared_ptr<TimedHydro> timed_;
-  std::vector<std::shared_ptr<ForceLaw>> forces_;
-  std::vector<std::shared_ptr<Observer>> observers_;
-  geometry::CellNeighbourList list_;
-  std::unique_ptr<VelocityEvaluator> evaluator_;
-  std::unique_ptr<TimeIntegrator> integrator_;
   DiscardingSink sink_;
-  RunInfo info_;
-  std::unique_ptr<StepLoop> steps_;
-  double dt_ = 0.0;
-  std::vector<std::string> skipped_;
+  std::ostream no_log_{nullptr};  // set-up lines are not part of a benchmark's output
+  std::unique_ptr<Simulation> simulation_;
   std::string start_note_;
 };
 

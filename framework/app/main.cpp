@@ -17,7 +17,7 @@
 #include "io/Summary.hpp"
 #include "plugins/PluginRegistry.hpp"
 #include "run/Experiment.hpp"
-#include "run/Simulation.hpp"
+#include "run/RunExperiment.hpp"
 
 namespace {
 

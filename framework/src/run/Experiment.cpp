@@ -65,12 +65,12 @@ ParamSchema run_schema() {
            "error of any body's surface point (midpoint - Euler for Brownian runs, RK3 - midpoint rule for "
            "kT = 0)")
       .greater(0.0);
-  s.number("reject_at", 10.0, "",
+  s.number("reject_at", 0.0, "",
            "with dt: auto, a step whose error estimate exceeds reject_at x tolerance is rejected and retried "
            "shorter on the same Brownian path; the controller keeps the typical error near the tolerance. "
-           "Rejecting at every excess (1) biases the thermal drift of configuration-dependent mobilities "
-           "(FLD): docs/time_steps.md")
-      .at_least(1.0);
+           "0 = automatic: 10 for Brownian runs (rejecting at every excess biases the thermal drift of "
+           "configuration-dependent mobilities such as FLD's: docs/time_steps.md), 1 for kT = 0")
+      .at_least(0.0);
   s.integer("refine", 0, "",
             "take every frame in at least 2^refine steps on the frame's own Brownian path (same seed: the "
             "same noise as the unrefined run, resolved finer): strong-convergence references")
@@ -303,7 +303,7 @@ Experiment read_experiment(const std::string& file, const std::vector<std::strin
     ex.dt_min = rp.number("dt_min");
     ex.tolerance = rp.number("tolerance");
     ex.max_overlap = rp.number("max_overlap");
-    ex.reject_at = rp.number("reject_at");
+    ex.reject_at = rp.number("reject_at");  // 0: set below, once flow.brownian is known
     ex.refine = int(rp.integer("refine"));
     // The frame: observers, checkpoints and the step counter count it.
     ex.dt = ex.dt_auto ? ex.dt_max : rp.number("dt");
@@ -331,6 +331,9 @@ Experiment read_experiment(const std::string& file, const std::vector<std::strin
   if (ex.dt > 0 && ex.duration > 0 && ex.dt > ex.duration)
     errors.add(ex.dt_auto ? run["dt_max"] : run["dt"], ex.dt_auto ? "run.dt_max" : "run.dt",
                "expected a time step no longer than run.duration");
+  if (ex.reject_at == 0.0) ex.reject_at = ex.brownian ? 10.0 : 1.0;
+  else if (ex.reject_at < 1.0)
+    errors.add(run["reject_at"], "run.reject_at", "expected 0 (automatic) or a number >= 1");
   if (ex.dt_auto && ex.brownian && ex.drift == "none")
     errors.add(run["drift"], "run.drift",
                "dt: auto needs the midpoint stage for its error estimate; drift: none has none");
