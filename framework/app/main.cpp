@@ -15,6 +15,7 @@
 #include "fldsim/observer.hpp"
 #include "fldsim/shape.hpp"
 #include "io/Summary.hpp"
+#include "oracle/OracleCommand.hpp"
 #include "plugins/PluginRegistry.hpp"
 #include "run/Experiment.hpp"
 #include "run/RunExperiment.hpp"
@@ -31,6 +32,7 @@ const char* kUsage =
     "  check FILE.yaml             validate an experiment without running it\n"
     "  plugins                     list every plugin found, with its parameters\n"
     "  summary RUN.h5              print the steady-state results of a run\n"
+    "  oracle FILE.yaml            exact equilibrium g(r) and Z of its potential (Monte Carlo)\n"
     "\n"
     "`fldsim CMD --help` documents each command.\n";
 
@@ -217,6 +219,7 @@ int main(int argc, char** argv) {
     if (cmd == "check") return cmd_run(rest, true);
     if (cmd == "plugins") return cmd_plugins(rest);
     if (cmd == "summary") return cmd_summary(rest);
+    if (cmd == "oracle") return fldsim::oracle_command(rest, std::cout, std::cerr);
     return usage_error("unknown command '" + cmd + "'", kUsage);
   } catch (const fldsim::ConfigError& e) {
     std::cerr << e.what() << "\n";

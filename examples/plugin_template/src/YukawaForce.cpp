@@ -25,9 +25,18 @@ double YukawaForce::range(const fldsim::System& system) const {
   return 2.0 * largest + cutoff_;
 }
 
+double YukawaForce::energy(double r, double sigma) const {
+  return strength_ * (sigma / r) * std::exp(-kappa_ * (r - sigma));
+}
+
 double YukawaForce::magnitude(double r, double sigma) const {
-  const double energy = strength_ * (sigma / r) * std::exp(-kappa_ * (r - sigma));
-  return energy * (kappa_ + 1.0 / r);
+  return energy(r, sigma) * (kappa_ + 1.0 / r);
+}
+
+double YukawaForce::pair_energy(const fldsim::System& system, const fldsim::NodePair& pair) const {
+  const double sigma = system.node_radius(pair.node_a) + system.node_radius(pair.node_b);
+  if (pair.distance - sigma >= cutoff_ || pair.distance <= 0.0) return 0.0;
+  return energy(pair.distance, sigma) - energy(sigma + cutoff_, sigma);  // shifted: zero at the cut
 }
 
 void YukawaForce::add(const fldsim::System& system, const fldsim::NodePairList& pairs, double* wrench,

@@ -110,4 +110,22 @@ TEST_F(YukawaPlugin, NoForceBeyondTheCutoff) {
   EXPECT_EQ(wrench_at(*law, 2.0 + 1.001 * cutoff * debye, Vec3::Zero(), nullptr)[6], 0.0);
 }
 
+// The energy the oracle samples is the potential of the force: F = -dU/dr by central differences
+// (h = 1e-6 a: error (h^2/6) U''' ~ 1e-9 relative), and zero at the cut (shifted, not truncated).
+TEST_F(YukawaPlugin, EnergyIsThePotentialOfTheForce) {
+  const auto law = make(10.0, 0.1, 5.0);
+  ASSERT_TRUE(law);
+  const fldsim::PairEnergy* energy = fldsim::pair_energy_of(*law);
+  ASSERT_NE(energy, nullptr) << "yukawa declares no pair energy";
+  fldsim::System system(std::make_shared<OneNode>(Vec3::Zero()), 2, 50.0, fldsim::Physics{});
+  auto u = [&](double r) { return energy->pair_energy(system, {0, 1, 0, 0, Vec3(r, 0.0, 0.0), r}); };
+  const double h = 1e-6;
+  for (double r : {2.001, 2.05, 2.2, 2.4, 2.49}) {
+    const double f = wrench_at(*law, r, Vec3::Zero(), nullptr)[6];
+    EXPECT_NEAR(-(u(r + h) - u(r - h)) / (2 * h), f, 1e-6 * f) << "r = " << r;
+  }
+  EXPECT_NEAR(u(2.5 - 1e-12), 0.0, 1e-9);  // continuous at the cut r_c = 2 + 5 x 0.1
+  EXPECT_EQ(u(2.5 + 1e-9), 0.0);
+}
+
 }  // namespace

@@ -55,6 +55,21 @@ double ShortRangeRepulsion::magnitude(double gap, double prefactor, double delta
   return prefactor * (delta_min / delta) * g * g * g;
 }
 
+double ShortRangeRepulsion::energy(double gap, double prefactor, double delta_min, double delta_num) {
+  if (gap >= delta_min) return 0.0;
+  const double x = std::max(gap, delta_num) / delta_min, x2 = x * x;
+  const double u =
+      prefactor * delta_min / 8.0 * (-std::log(x) - 11.0 / 12.0 + x2 * (1.5 + x2 * (-0.75 + x2 / 6.0)));
+  if (gap >= delta_num) return u;
+  return u + magnitude(delta_num, prefactor, delta_min, delta_num) * (delta_num - gap);
+}
+
+double ShortRangeRepulsion::pair_energy(const System& system, const NodePair& pair) const {
+  const double gap = pair.distance - system.node_radius(pair.node_a) - system.node_radius(pair.node_b);
+  if (gap >= delta_min_) return 0.0;
+  return energy(gap, prefactor(system), delta_min_, delta_num_);
+}
+
 void ShortRangeRepulsion::add(const System& system, const NodePairList& pairs, double* wrench,
                               Eigen::Matrix3d* virial) const {
   const double cp = prefactor(system);

@@ -4,6 +4,12 @@
 // with d the unit vector from one node to the other and gaps below delta_num evaluated at
 // delta_num. The paper quotes C_p* = C_p / (8 pi mu a^2 rate) with rate = D0/a^2 for Pe < 1 and
 // gammadot for Pe >= 1 (DESIGN.md: the printed "8 pi mu a^4/D0" is dimensionally a typo).
+//
+// Its potential (PairEnergy), the integral of the force as coded, U(delta) = int_delta^delta_min F:
+// with x = delta/delta_min, eta - eta^2/2 = (1 - x^2)/2, so F = (C_p/8) (1 - x^2)^3 / x and
+//   U = (C_p delta_min / 8) [-ln x - 11/12 + 3x^2/2 - 3x^4/4 + x^6/6]     delta_num <= delta < delta_min
+//   U = U(delta_num) + F(delta_num) (delta_num - delta)                   delta < delta_num
+// (the constant force below delta_num makes U linear there, overlaps included), U = 0 beyond.
 #pragma once
 
 #include "fldsim/force.hpp"
@@ -11,7 +17,7 @@
 
 namespace fldsim {
 
-class ShortRangeRepulsion : public ForceLaw {
+class ShortRangeRepulsion : public ForceLaw, public PairEnergy {
  public:
   static void describe(ParamSchema& s);
   explicit ShortRangeRepulsion(const Params& p);
@@ -19,9 +25,12 @@ class ShortRangeRepulsion : public ForceLaw {
   double range(const System& system) const override;
   void add(const System& system, const NodePairList& pairs, double* wrench,
            Eigen::Matrix3d* virial) const override;
+  double pair_energy(const System& system, const NodePair& pair) const override;
 
   // Magnitude of the force at surface gap `gap` (repulsive, >= 0), for prefactor C_p.
   static double magnitude(double gap, double prefactor, double delta_min, double delta_num);
+  // Its potential at surface gap `gap` (any sign): the integral of magnitude() from gap to delta_min.
+  static double energy(double gap, double prefactor, double delta_min, double delta_num);
   // C_p in internal units for the system's rate convention.
   double prefactor(const System& system) const;
 

@@ -1,0 +1,102 @@
+#include "BrownianEquilibrium.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "dynamics/Scene.hpp"
+#include "geometry/HardBodyMonteCarlo.hpp"
+#include "observers/FakeSink.hpp"
+#include "oracle/PairVirial.hpp"
+#include "run/StepLoop.hpp"
+
+namespace fldsim::testing {
+
+std::string EquilibriumScene::describe() const {
+  std::ostringstream o;
+  o << count << " x " << shape << shape_params << ", phi " << phi << ", hydro " << hydro << hydro_params
+    << ", repulsion " << force_params;
+  return o.str();
+}
+
+namespace {
+
+Physics brownian_physics(double phi) {
+  Physics ph;
+  ph.kT = 1.0;
+  ph.shear_rate = 0.0;
+  ph.volume_fraction = phi;
+  return ph;
+}
+
+double box_edge(const Shape& shape, std::size_t n, double phi) {
+  return std::cbrt(double(n) * shape.volume() / phi);
+}
+
+}  // namespace
+
+oracle::OracleResult run_scene_oracle(const EquilibriumScene& scene, const oracle::OracleOptions& opt) {
+  auto shape = make<Shape>("shape", scene.shape, scene.shape_params);
+  System s(shape, scene.count, box_edge(*shape, scene.count, scene.phi), brownian_physics(scene.phi));
+  return oracle::run_oracle(s, {make<ForceLaw>("force", "repulsion", scene.force_params)}, opt);
+}
+
+BrownianEquilibrium run_brownian(const EquilibriumScene& scene, const BrownianOptions& opt) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  auto shape = make<Shape>("shape", scene.shape, scene.shape_params);
+  Scene sc(shape, scene.count, box_edge(*shape, scene.count, scene.phi), brownian_physics(scene.phi));
+  System& s = *sc.system;
+  geometry::MonteCarloOptions start;
+  start.seed = opt.seed;
+  geometry::initialise_monte_carlo(s, start);
+  auto repulsion = make<ForceLaw>("force", "repulsion", scene.force_params);
+  sc.finish(make<HydroModel>("hydro", scene.hydro, scene.hydro_params), {repulsion},
+            HydroRequest{true, false, opt.stress_every > 0});
+  EulerMaruyama integrator(opt.seed, true, opt.drift, s.size());
+
+  const std::int64_t warm = std::llround(opt.equilibrate / opt.dt);
+  const std::int64_t per_block = std::llround(opt.duration / opt.dt) / opt.sample_every / opt.blocks;
+  RunInfo info;
+  info.dt = opt.dt;
+  info.total_steps = warm + per_block * opt.sample_every * opt.blocks;
+  std::vector<std::shared_ptr<Observer>> observers;
+  if (opt.stress_every > 0) {
+    auto stress = make<Observer>("observer", "stress");
+    stress->set_schedule(opt.stress_every, warm * opt.dt);
+    observers.push_back(stress);
+  }
+  fldsim::test::FakeSink sink;
+  for (auto& o : observers) o->begin(s, info, sink);
+  StepLoop loop(s, integrator, *sc.evaluator, sc.list, observers, info, true,
+                opt.drift == DriftScheme::Midpoint);
+
+  BrownianEquilibrium out;
+  out.g = oracle::RadialHistogram(oracle::PairPoints::BodyCentres, opt.bin_width, opt.r_max);
+  out.min_gap = INFINITY;
+  oracle::PairVirial virial(s, {repulsion.get()});
+  for (std::int64_t k = 0; k < warm; ++k) loop.step(sink);
+  for (int b = 0; b < opt.blocks; ++b) {
+    double z = 0.0;
+    for (std::int64_t j = 0; j < per_block; ++j) {
+      for (std::int64_t w = 0; w < opt.sample_every; ++w) loop.step(sink);
+      out.g.add_sample(s);
+      z += 1.0 + virial.measure(s).body.trace() / (3.0 * double(s.size()) * s.physics().kT);
+      out.min_gap = std::min(out.min_gap, sc.list.min_gap(s));
+    }
+    out.g.end_block();
+    out.Z_blocks.push_back(z / double(per_block));
+  }
+  out.Z = oracle::block_mean(out.Z_blocks);
+  out.steps = s.step();
+  for (auto& o : observers) o->finish(info, sink);
+  if (opt.stress_every > 0) {
+    const auto& pi = sink.scalar("results/stress/Pi_interparticle_kT");
+    const double n = double(s.size()) / s.box().volume();
+    out.Z_observer = 1.0 + pi.value / n;
+    out.Z_observer_se = pi.stderr_value / n;
+  }
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  return out;
+}
+
+}  // namespace fldsim::testing

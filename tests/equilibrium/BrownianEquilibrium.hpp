@@ -1,0 +1,55 @@
+// The Brownian side of the equilibrium tests: a Pe = 0 run of a scene (shape, N, phi, hydro model,
+// repulsion) through the step users run (StepLoop with the real `stress` observer), sampled into
+// the same blocked g(r) as the Monte Carlo oracle, and the oracle of the same scene.
+//   start       hard-body Monte Carlo (as `init: monte_carlo`), then `equilibrate` a^2/D0 unsampled
+//   sampling    every `sample_every` steps for `duration` a^2/D0, in `blocks` equal blocks:
+//               body-centre g(r) in bins of `bin_width` (0.01 a: rebinned to 0.02 a for the
+//               comparison, 0.05 a for the contact shell), and the molecular-virial Z of each
+//               sampled configuration (oracle::PairVirial, as the oracle measures it)
+//   pressure    the stress observer's interparticle Pi -> Z_observer = 1 + Pi/(n kT), its own
+//               Flyvbjerg-Petersen SE
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "dynamics/TimeIntegrator.hpp"
+#include "oracle/EquilibriumOracle.hpp"
+
+namespace fldsim::testing {
+
+struct EquilibriumScene {
+  std::string shape = "sphere", shape_params = "{}";
+  std::string hydro = "fld", hydro_params = "{}";
+  std::string force_params = "{}";  // of the repulsion
+  std::size_t count = 125;
+  double phi = 0.3;
+  std::string describe() const;
+};
+
+struct BrownianOptions {
+  double dt = 1e-3;  // a^2/D0
+  DriftScheme drift = DriftScheme::Midpoint;
+  double equilibrate = 1.0;        // a^2/D0, not sampled
+  double duration = 10.0;          // a^2/D0, sampled
+  std::int64_t sample_every = 10;  // steps
+  int blocks = 20;
+  std::uint64_t seed = 1;  // start and noise
+  double bin_width = 0.01, r_max = 3.0;
+  std::int64_t stress_every = 0;  // steps between stress-observer samples; 0 = no observer
+};
+
+struct BrownianEquilibrium {
+  oracle::RadialHistogram g{oracle::PairPoints::BodyCentres, 0.01, 3.0};
+  std::vector<double> Z_blocks;  // configurational molecular virial
+  oracle::MeanError Z;
+  double Z_observer = 0.0, Z_observer_se = 0.0;  // from the stress observer (if stress_every > 0)
+  std::int64_t steps = 0;
+  double min_gap = 0.0;  // smallest node surface gap seen at the samples
+  double seconds = 0.0;
+};
+
+BrownianEquilibrium run_brownian(const EquilibriumScene& scene, const BrownianOptions& opt);
+oracle::OracleResult run_scene_oracle(const EquilibriumScene& scene, const oracle::OracleOptions& opt);
+
+}  // namespace fldsim::testing

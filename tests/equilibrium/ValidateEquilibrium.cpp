@@ -1,0 +1,213 @@
+// make validate (equilibrium part): long Brownian runs against the Monte Carlo oracle of the same
+// potential, with the tables of the CI tests at larger N and length:
+//   fldsim_validate_equilibrium                       every case below, long settings
+//   fldsim_validate_equilibrium CASE [key=value ...]  one case, settings overridden
+// Cases: spheres, dicolloid02, dicolloid1 (FLD, default dt), spheres_nodrift, spheres_notaper,
+// and pressure_<shape> (free_draining at a small dt: Z against the oracle).
+// Keys: n, phi, dt, duration, equilibrate, blocks, every, seed, hydro, hydro_params,
+// force_params, drift (midpoint|none), oracle_sweeps, oracle_blocks, stress_every.
+// Prints per case: g(r) bin table (0.02 a), the 0.01 a bins around contact (2.00-2.10 a) and
+// around the lubrication cutoff (2.40-2.60 a) as ratios g_BD/g_MC, the contact shell 2.00-2.05 a,
+// and Z (configurational virial and stress observer) against the oracle. Exit code 1 if a case
+// that should pass fails (or one that should fail passes).
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <string>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "BrownianEquilibrium.hpp"
+#include "oracle/GrComparison.hpp"
+
+namespace {
+
+using namespace fldsim;
+using namespace fldsim::testing;
+
+struct Case {
+  EquilibriumScene scene;
+  BrownianOptions bd;
+  oracle::OracleOptions mc;
+  bool expect_pass = true;
+  bool pressure = false;  // compare Z within 2 %
+};
+
+std::map<std::string, Case> cases() {
+  std::map<std::string, Case> c;
+  Case base;
+  base.scene.count = 500;
+  base.bd.duration = 40.0;
+  base.bd.equilibrate = 2.0;
+  base.bd.blocks = 20;
+  base.mc.bin_width = 0.01;
+  base.mc.sweeps = 40000;
+  base.mc.blocks = 40;
+  base.mc.node_distribution = false;
+  c["spheres"] = base;
+  Case d = base;
+  d.scene.shape = "dicolloid";
+  d.scene.shape_params = "{a: 1, b: 1, c: 0.2}";
+  c["dicolloid02"] = d;
+  Case nd = base;
+  nd.bd.drift = DriftScheme::None;
+  nd.bd.duration = 5.0;
+  nd.expect_pass = false;
+  c["spheres_nodrift"] = nd;
+  Case nt = base;
+  nt.scene.hydro_params = "{taper: none}";
+  nt.expect_pass = false;
+  c["spheres_notaper"] = nt;
+  for (const auto& [name, shape, params] :
+       {std::tuple{"pressure_spheres", "sphere", "{}"},
+        std::tuple{"pressure_dicolloid02", "dicolloid", "{a: 1, b: 1, c: 0.2}"},
+        std::tuple{"pressure_dicolloid1", "dicolloid", "{a: 1, b: 1, c: 1}"}}) {
+    Case p = base;
+    p.scene.shape = shape;
+    p.scene.shape_params = params;
+    p.scene.hydro = "free_draining";
+    p.bd.dt = 1e-5;
+    p.bd.duration = 2.0;
+    p.bd.equilibrate = 0.2;
+    p.bd.sample_every = 100;
+    p.bd.stress_every = 100;
+    p.pressure = true;
+    c[name] = p;
+  }
+  return c;
+}
+
+void apply(Case& c, const std::string& kv) {
+  const auto eq = kv.find('=');
+  if (eq == std::string::npos) throw std::runtime_error("expected key=value, got " + kv);
+  const std::string k = kv.substr(0, eq), v = kv.substr(eq + 1);
+  if (k == "n")
+    c.scene.count = std::stoul(v);
+  else if (k == "phi")
+    c.scene.phi = std::stod(v);
+  else if (k == "dt")
+    c.bd.dt = std::stod(v);
+  else if (k == "duration")
+    c.bd.duration = std::stod(v);
+  else if (k == "equilibrate")
+    c.bd.equilibrate = std::stod(v);
+  else if (k == "blocks")
+    c.bd.blocks = std::stoi(v);
+  else if (k == "every")
+    c.bd.sample_every = std::stol(v);
+  else if (k == "seed")
+    c.bd.seed = c.mc.seed = std::stoul(v);
+  else if (k == "hydro")
+    c.scene.hydro = v;
+  else if (k == "hydro_params")
+    c.scene.hydro_params = v;
+  else if (k == "force_params")
+    c.scene.force_params = v;
+  else if (k == "shape")
+    c.scene.shape = v;
+  else if (k == "shape_params")
+    c.scene.shape_params = v;
+  else if (k == "drift")
+    c.bd.drift = v == "none" ? DriftScheme::None : DriftScheme::Midpoint;
+  else if (k == "oracle_sweeps")
+    c.mc.sweeps = std::stol(v);
+  else if (k == "oracle_blocks")
+    c.mc.blocks = std::stoi(v);
+  else if (k == "stress_every")
+    c.bd.stress_every = std::stol(v);
+  else if (k == "pressure")
+    c.pressure = v == "1";
+  else
+    throw std::runtime_error("unknown key " + k);
+}
+
+void ratio_rows(const oracle::RadialHistogram& bd, const oracle::RadialHistogram& mc, double from,
+                double to) {
+  oracle::GrComparisonOptions o;
+  o.r_from = from;
+  o.r_to = to;
+  o.min_count = 0;
+  const auto c = oracle::compare_gr(bd, mc, o);
+  std::printf("  r/a          g_BD/g_MC   +-      z\n");
+  for (const auto& b : c.bins) {
+    const double err = std::abs(b.ratio) * std::hypot(b.a.se / b.a.mean, b.b.se / b.b.mean);
+    std::printf("  %4.2f-%4.2f   %8.3f  %6.3f  %6.1f\n", b.r_lo, b.r_hi, b.ratio, err, b.z);
+  }
+}
+
+bool run_case(const std::string& name, const Case& c) {
+  std::cout << "\n=== " << name << ": " << c.scene.describe() << "; dt " << c.bd.dt << ", "
+            << (c.bd.drift == DriftScheme::None ? "drift none" : "midpoint drift") << ", " << c.bd.duration
+            << " a^2/D0 sampled after " << c.bd.equilibrate << ", " << c.bd.blocks << " blocks\n"
+            << std::flush;
+  const auto mc = run_scene_oracle(c.scene, c.mc);
+  std::cout << "oracle: " << mc.samples << " samples, Z = " << mc.Z.mean << " +- " << mc.Z.se
+            << " (node-node " << mc.Z_node.mean << " +- " << mc.Z_node.se << "), " << mc.seconds << " s\n"
+            << std::flush;
+  const auto bd = run_brownian(c.scene, c.bd);
+  std::cout << "brownian: " << bd.steps << " steps, " << bd.seconds << " s, min gap " << bd.min_gap << " a\n";
+  bool ok = true;
+  if (c.pressure) {
+    const auto z = oracle::compare_means(bd.Z, mc.Z);
+    std::printf(
+        "Z: dynamics %.4f +- %.4f (stress observer %.4f +- %.4f), oracle %.4f +- %.4f, ratio %.4f, z %.2f\n",
+        bd.Z.mean, bd.Z.se, bd.Z_observer, bd.Z_observer_se, mc.Z.mean, mc.Z.se, z.ratio, z.z);
+    ok = std::abs(z.ratio - 1.0) < 0.02 && std::abs(z.z) < 3.0;
+  } else {
+    oracle::GrComparisonOptions o;
+    o.r_from = 1.98;
+    o.r_to = 3.0;
+    const auto cmp = oracle::compare_gr(bd.g.rebinned(2), mc.bodies.rebinned(2), o);
+    std::cout << cmp.table(o);
+    std::cout << "contact, 0.01 a bins:\n";
+    ratio_rows(bd.g, mc.bodies, 1.98, 2.10);
+    std::cout << "cutoff, 0.01 a bins:\n";
+    ratio_rows(bd.g, mc.bodies, 2.40, 2.60);
+    const auto shell = oracle::compare_means(oracle::block_mean(bd.g.shell_block_values(2.0, 2.05)),
+                                             oracle::block_mean(mc.bodies.shell_block_values(2.0, 2.05)));
+    std::printf("contact shell 2.00-2.05 a: g_BD/g_MC = %.4f +- %.4f (z %.2f)\n", shell.ratio,
+                shell.ratio * std::hypot(shell.a.se / shell.a.mean, shell.b.se / shell.b.mean), shell.z);
+    ok = cmp.pass();
+  }
+  const bool as_expected = ok == c.expect_pass;
+  std::cout << name << ": " << (ok ? "pass" : "fail")
+            << (as_expected ? " (as expected)" : " (NOT as expected)") << "\n";
+  return as_expected;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // One thread unless OMP_NUM_THREADS says otherwise (N = 125-500 gains nothing from two, and the
+  // machine is shared: see tests/SingleThreadedMain.cpp).
+  if (std::getenv("OMP_NUM_THREADS") == nullptr) {
+    ::setenv("OMP_NUM_THREADS", "1", 1);
+#ifdef _OPENMP
+    omp_set_num_threads(1);
+#endif
+  }
+  try {
+    auto all = cases();
+    if (argc > 1) {
+      const std::string name = argv[1];
+      if (!all.count(name)) {
+        std::cerr << "unknown case " << name << "\n";
+        return 2;
+      }
+      Case c = all[name];
+      for (int k = 2; k < argc; ++k) apply(c, argv[k]);
+      return run_case(name, c) ? 0 : 1;
+    }
+    bool ok = true;
+    for (const auto& [name, c] : all) ok = run_case(name, c) && ok;
+    return ok ? 0 : 1;
+  } catch (const std::exception& e) {
+    std::cerr << "fldsim_validate_equilibrium: " << e.what() << "\n";
+    return 1;
+  }
+}
