@@ -12,6 +12,9 @@
 // configurations held fixed while the factors change (common random numbers), so d(f_t, f_r) is a
 // smooth function and a Newton iteration converges in a few steps.
 //
+// It also gives the stresslet factor f_s(phi) that makes the high-frequency viscosity eta'_inf of the
+// same configurations match Riest et al.'s fit to accelerated-SD data (reference notes §1d).
+//
 // Usage: fldsim_fit_r0 [N] [configurations] [draws] [lubrication yaml]
 //   e.g. fldsim_fit_r0 500 3 16 "{pump: lammps, twist: false}"
 #include <Eigen/Dense>
@@ -34,6 +37,12 @@ using hydro::ResistanceModel;
 
 double target_translation(double phi) {
   return 1.0 - 1.8315 * phi * (1.0 + 0.12 * phi - 0.70 * phi * phi);
+}
+// eta'_inf/eta_0 = 1 + 2.5 phi (1+S)/(1 - phi (1+S)), S = phi (1 + 0.95 phi - 2.15 phi^2): Riest et
+// al. (Soft Matter 2015), fit to accelerated-SD data (reference notes §1d).
+double target_viscosity(double phi) {
+  const double S = phi * (1.0 + 0.95 * phi - 2.15 * phi * phi);
+  return 1.0 + 2.5 * phi * (1.0 + S) / (1.0 - phi * (1.0 + S));
 }
 double target_rotation(double phi) {
   return 1.0 - 0.631 * phi - 0.726 * phi * phi;
@@ -65,10 +74,35 @@ class DiffusivityProbe {
       opt.seed = seed + std::uint64_t(c);
       geometry::initialise_monte_carlo(*cfg->system, opt);
       cfg->system->update_nodes();
-      cfg->list.configure(base.cutoff * 1.0, 0.0);
+      cfg->list.configure(base.lub.cutoff * 1.0, 0.0);
       cfg->list.update(*cfg->system);
       configurations_.push_back(std::move(cfg));
     }
+  }
+
+  // High-frequency relative viscosity eta'_inf of the same configurations for factors f: the
+  // hydrodynamic stress of force- and torque-free bodies under a sudden unit shear (no Brownian or
+  // interparticle stress), eta_r = 1 + sigma_xy/(mu gammadot), sigma = (1/V) sum of stresslets.
+  double high_frequency_viscosity(const IsotropicFactors& f) {
+    double sum = 0;
+    ModelSettings settings = base_;
+    settings.fixed_factors = f;
+    for (auto& cfg : configurations_) {
+      System& s = *cfg->system;
+      const Physics saved = s.physics();
+      s.physics().kT = 0.0;
+      s.physics().shear_rate = 1.0;
+      ResistanceModel model(settings);
+      model.configure(s, HydroRequest{false, true, true});
+      model.assemble(s, cfg->list.pairs());
+      const std::size_t n = s.size();
+      std::vector<double> F(6 * n, 0.0), dU(6 * n, 0.0);
+      model.solve(s, F.data(), dU.data());
+      const Eigen::Matrix3d S = model.stresslet_sum(s, cfg->list.pairs(), dU.data());
+      sum += 1.0 + S(0, 1) / s.box().volume() / s.physics().viscosity;
+      s.physics() = saved;
+    }
+    return sum / double(configurations_.size());
   }
 
   // (d_s, d_r) for the given factors.
@@ -141,7 +175,7 @@ int run(int argc, char** argv) {
   base.tolerance = 1e-8;
 
   const std::vector<double> phis = {0.1, 0.2, 0.3, 0.4, 0.45, 0.5};
-  std::vector<double> ft;
+  std::vector<double> ft, fs;
   std::printf("N = %zu, %d configurations x %d draws, lubrication %s\n", n, configurations, draws,
               lub.c_str());
   double f_t = 1.0;
@@ -151,20 +185,30 @@ int run(int argc, char** argv) {
     DiffusivityProbe probe(phi, n, configurations, draws, base, 1000);
     f_t = fit_translation(probe, target_translation(phi), f_t, rotation_factor(phi));
     ft.push_back(f_t);
-    std::printf("  f_t = %.4f\n", f_t);
+    // eta'_inf is linear in f_s (the isotropic stresslet is n f_s (20/3) pi mu a^3 E): two
+    // evaluations give the f_s that meets the target exactly.
+    const double e0 = probe.high_frequency_viscosity({f_t, rotation_factor(phi), 0.0});
+    const double e1 = probe.high_frequency_viscosity({f_t, rotation_factor(phi), 1.0});
+    fs.push_back((target_viscosity(phi) - e0) / (e1 - e0));
+    std::printf("  f_t = %.4f; eta'_inf %.4f (f_s = 0), %.4f (f_s = 1), target %.4f -> f_s = %.4f\n", f_t, e0,
+                e1, target_viscosity(phi), fs.back());
     std::fflush(stdout);
   }
   const Eigen::Vector2d ct = fit_quadratic(phis, ft);
-  std::printf("\nfit: f_t = 1 + %.4f phi + %.4f phi^2 (f_r: Kumar & Higdon)\n", ct[0], ct[1]);
+  const Eigen::Vector2d cs = fit_quadratic(phis, fs);
+  std::printf("\nfit: f_t = 1 + %.4f phi + %.4f phi^2, f_s = 1 + %.4f phi + %.4f phi^2 (f_r: Kumar & Higdon)\n",
+              ct[0], ct[1], cs[0], cs[1]);
 
   // Validation on configurations and draws not used for the fit.
-  std::printf("\nvalidation (new configurations):\n phi    d_s     target  d_r     target\n");
+  std::printf("\nvalidation (new configurations):\n phi    d_s     target  d_r     target  eta'_inf target\n");
   for (double phi : phis) {
     DiffusivityProbe probe(phi, n, configurations, draws, base, 5000);
     const double t = 1.0 + ct[0] * phi + ct[1] * phi * phi;
-    const Eigen::Vector2d d = probe.measure({t, rotation_factor(phi), 1.0});
-    std::printf(" %.2f   %.4f  %.4f  %.4f  %.4f\n", phi, d[0], target_translation(phi), d[1],
-                target_rotation(phi));
+    const double fsv = 1.0 + cs[0] * phi + cs[1] * phi * phi;
+    const Eigen::Vector2d d = probe.measure({t, rotation_factor(phi), fsv});
+    const double eta = probe.high_frequency_viscosity({t, rotation_factor(phi), fsv});
+    std::printf(" %.2f   %.4f  %.4f  %.4f  %.4f  %.4f   %.4f\n", phi, d[0], target_translation(phi), d[1],
+                target_rotation(phi), eta, target_viscosity(phi));
     std::fflush(stdout);
   }
   return 0;

@@ -96,6 +96,21 @@ TEST(ExperimentRun, OverrideOfAListByNameIsAOneLineError) {
   EXPECT_EQ(far.output, "--set forces.3.prefactor=1: index 3 out of range (the list has 1 entries)\n");
 }
 
+// The form errors print (forces[0].plugin) addresses the same entry as the dotted one.
+TEST(ExperimentRun, OverrideAcceptsTheIndexFormThatErrorsPrint) {
+  const fs::path d = scratch("override-index");
+  write(d / "e.yaml", experiment((d / "out.h5").string(), 0.02));
+  const Command bracket = run("check " + (d / "e.yaml").string() + " --set forces[0].plugin=nosuch");
+  const Command dotted = run("check " + (d / "e.yaml").string() + " --set forces.0.plugin=nosuch");
+  EXPECT_EQ(bracket.code, 2);
+  EXPECT_NE(bracket.output.find("forces[0].plugin: no force plugin named 'nosuch'"), std::string::npos)
+      << bracket.output;
+  EXPECT_EQ(bracket.output, dotted.output);
+  const Command far = run("check " + (d / "e.yaml").string() + " --set forces[3].prefactor=1");
+  EXPECT_EQ(far.output, "--set forces[3].prefactor=1: index 3 out of range (the list has 1 entries)\n");
+  EXPECT_EQ(run("check " + (d / "e.yaml").string() + " --set forces[0].prefactor=20").code, 0);
+}
+
 // A check only the plugin can make (in its constructor) is made by `check` too, not first at `run`.
 TEST(ExperimentRun, CheckConstructsPluginsSoTheirOwnChecksFail) {
   const fs::path d = scratch("plugin-check");

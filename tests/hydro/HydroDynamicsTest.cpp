@@ -177,29 +177,38 @@ TEST(FldModel, IsolatedSphereMobilityFollowsKumarHigdonFit) {
 
 TEST(LubricationModel, PairStressletOfSpheresOnTheCompressionalAxis) {
   // Two force-free unit spheres at centre distance R along the compressional axis
-  // d = (1,-1,0)/sqrt(2) of u = gammadot y e_x. The ambient relative velocity E R d = -(gammadot R/2) d
-  // is purely normal, so only the squeeze mode acts. Force balance on each sphere,
-  // R_0 dU_j = -c (u + e) d with u the relative normal velocity and e = -gammadot R/2, gives
+  // d = (1,-1,0)/sqrt(2) of u = gammadot y e_x. With the strain arm L (L = R for strain_arm centre,
+  // the contact distance 2a for contact), the ambient relative velocity E L d = -(gammadot L/2) d is
+  // purely normal, so only the squeeze mode acts. Force balance on each sphere,
+  // R_0 dU_j = -c (u + e) d with u the relative normal velocity and e = -gammadot L/2, gives
   // u = -2 c e/(R_0 + 2c) and the pair force on j F_j = -c e R_0/(R_0 + 2c) d (repulsive). The pair
-  // stresslet -sym(R (x) F_j) then has xy component R^2 gammadot c R_0/(4 (R_0 + 2c)) > 0, added to
+  // stresslet -sym(L (x) F_j) then has xy component L^2 gammadot c R_0/(4 (R_0 + 2c)) > 0, added to
   // the two isolated-sphere stresslets 2 (20/3) pi mu a^3 gammadot/2.
   const double gd = 1.3, R = 2.01;
-  System s(sphere_shape(), 2, 30.0, physics(0.0, gd, 0.0));
-  const Vec3 d = Vec3(1, -1, 0).normalized();
-  s.positions()[0] = Vec3(15, 15, 15);
-  s.positions()[1] = s.positions()[0] + R * d;
-  s.update_nodes();
-  ResistanceModel model(ModelSettings{});
-  model.configure(s, deterministic(true, true));
-  const NodePairList pairs = brute_force_pairs(s, model.pair_range(s));
-  model.assemble(s, pairs);
-  std::vector<double> F(12, 0.0), dU(12, 0.0);
-  model.solve(s, F.data(), dU.data());
-  const double mu = s.physics().viscosity, R0 = 6 * kPi * mu;
-  const double c = LubricationPair::coefficients(1.0, 1.0, R, mu, LubricationOptions{}).squeeze;
-  const double expected = 2 * 20.0 / 3.0 * kPi * mu * 0.5 * gd + R * R * gd * c * R0 / (4 * (R0 + 2 * c));
-  const Eigen::Matrix3d S = model.stresslet_sum(s, pairs, dU.data());
-  // The CG tolerance 1e-6 bounds the relative error of dU and hence of the pair force.
-  EXPECT_NEAR(S(0, 1), expected, 1e-5 * expected);
-  EXPECT_NEAR(S(1, 0), S(0, 1), 1e-15 * expected);
+  for (const StrainArm arm : {StrainArm::Centre, StrainArm::Contact}) {
+    SCOPED_TRACE(arm == StrainArm::Centre ? "centre" : "contact");
+    System s(sphere_shape(), 2, 30.0, physics(0.0, gd, 0.0));
+    const Vec3 d = Vec3(1, -1, 0).normalized();
+    s.positions()[0] = Vec3(15, 15, 15);
+    s.positions()[1] = s.positions()[0] + R * d;
+    s.update_nodes();
+    ModelSettings settings;
+    settings.lub.strain_arm = arm;
+    ResistanceModel model(settings);
+    model.configure(s, deterministic(true, true));
+    const NodePairList pairs = brute_force_pairs(s, model.pair_range(s));
+    model.assemble(s, pairs);
+    std::vector<double> F(12, 0.0), dU(12, 0.0);
+    model.solve(s, F.data(), dU.data());
+    const double mu = s.physics().viscosity, R0 = 6 * kPi * mu, L = arm == StrainArm::Centre ? R : 2.0;
+    const double c = LubricationPair::coefficients(1.0, 1.0, R, mu, LubricationOptions{}).squeeze;
+    const double expected = 2 * 20.0 / 3.0 * kPi * mu * 0.5 * gd + L * L * gd * c * R0 / (4 * (R0 + 2 * c));
+    const Eigen::Matrix3d S = model.stresslet_sum(s, pairs, dU.data());
+    // The CG tolerance 1e-6 bounds the relative error of dU and hence of the pair force.
+    EXPECT_NEAR(S(0, 1), expected, 1e-5 * expected);
+    EXPECT_NEAR(S(1, 0), S(0, 1), 1e-15 * expected);
+    // The relative normal velocity: the squeeze resists the approach L gammadot/2 at the arm.
+    const Vec3 rel = Eigen::Map<const Vec3>(dU.data() + 6) - Eigen::Map<const Vec3>(dU.data());
+    EXPECT_NEAR(rel.dot(d), 2 * c * (gd * L / 2) / (R0 + 2 * c), 1e-5 * gd);
+  }
 }

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "HydroTestSupport.hpp"
+#include "ResistanceModel.hpp"
 #include "fldsim/hydro.hpp"
 #include "plugins/PluginRegistry.hpp"
 
@@ -14,7 +15,8 @@ namespace {
 Params defaults(const PluginInfo& info) {
   Params p("hydro", "test");
   for (const auto& spec : info.schema.specs())
-    if (spec.default_value) p.set(spec.name, *spec.default_value, ParamOrigin{"test", "hydro." + spec.name});
+    if (spec.default_value)
+      p.set(spec.name, *spec.default_value, ParamOrigin{"test", "hydro." + spec.name}, /*given=*/false);
   return p;
 }
 
@@ -41,5 +43,32 @@ TEST(HydroPlugins, LoadAndGiveTheirIsolatedSphereMobility) {
     double dU[6] = {0};
     model->solve(s, F, dU);
     EXPECT_NEAR(1.0 / dU[0], resistance, 1e-12);
+  }
+}
+
+TEST(HydroPlugins, LammpsConventionsPresetThePairFormsAndRefuseContradictions) {
+  const PluginRegistry registry({FLDSIM_TEST_PLUGIN_DIR});
+  for (const char* name : {"fld", "lubrication"}) {
+    SCOPED_TRACE(name);
+    Params p = defaults(registry.find("hydro", name));
+    p.set("conventions", std::string("lammps"), ParamOrigin{"test:3:5", "hydro.conventions"});
+    const auto lammps = hydro::read_lubrication_params(p);
+    EXPECT_EQ(lammps.lub.pump, hydro::PumpForm::Lammps);
+    EXPECT_FALSE(lammps.lub.twist);
+    EXPECT_EQ(lammps.lub.lever, hydro::Lever::Contact);
+    EXPECT_EQ(lammps.lub.strain_arm, hydro::StrainArm::Contact);
+    EXPECT_EQ(lammps.lub.taper_width, 0.0);
+    // A key the user wrote that contradicts the preset is a configuration error naming it.
+    p.set("lever", std::string("centre"), ParamOrigin{"test:4:5", "hydro.lever"});
+    try {
+      hydro::read_lubrication_params(p);
+      ADD_FAILURE() << "conventions: lammps with lever: centre was accepted";
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find("hydro.lever"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("contradicts conventions: lammps"), std::string::npos) << e.what();
+    }
+    // The same value as the preset is fine.
+    p.set("lever", std::string("contact"), ParamOrigin{"test:4:5", "hydro.lever"});
+    EXPECT_NO_THROW(hydro::read_lubrication_params(p));
   }
 }

@@ -207,3 +207,64 @@ TEST(LubricationPair, RigidMotionsAreAnnihilatedAndRadiiSymmetric) {
     EXPECT_NEAR(c1.lever_i + c1.lever_j, r.norm(), 1e-14);
   }
 }
+
+TEST(LubricationPair, TaperTakesEveryCoefficientSmoothlyToZeroAtTheCutoff) {
+  LubricationOptions opt;
+  opt.cutoff = 2.5;
+  opt.taper_width = 0.3;
+  const auto at = [&](double r) { return LubricationPair::coefficients(1.0, 1.0, r, kMu, opt); };
+  LubricationOptions abrupt = opt;
+  abrupt.taper_width = 0.0;
+  // Below the window: untouched. At the cutoff: every mode vanishes.
+  const auto inside = at(2.19), plain = LubricationPair::coefficients(1.0, 1.0, 2.19, kMu, abrupt);
+  EXPECT_EQ(inside.squeeze, plain.squeeze);
+  EXPECT_EQ(inside.pump, plain.pump);
+  const auto edge = at(2.5);
+  EXPECT_EQ(edge.squeeze, 0.0);
+  EXPECT_EQ(edge.shear, 0.0);
+  EXPECT_EQ(edge.pump, 0.0);
+  EXPECT_EQ(edge.twist, 0.0);
+  // C2 at both ends of the window: one-sided first and second differences of T(r) vanish like h
+  // and 1 (smoothstep 1 - s^3 (10 - 15 s + 6 s^2): T' = -30 s^2 (1-s)^2 / w, T'' ~ s and (1-s)).
+  const double h = 1e-4;
+  for (double r0 : {2.2, 2.5}) {
+    SCOPED_TRACE(r0);
+    const double t0 = taper_factor(r0, opt);
+    const double d1 = (taper_factor(r0 + h, opt) - taper_factor(r0 - h, opt)) / (2 * h);
+    const double d2 = (taper_factor(r0 + h, opt) - 2 * t0 + taper_factor(r0 - h, opt)) / (h * h);
+    EXPECT_LT(std::abs(d1), 30 * h * h / (0.3 * 0.3 * 0.3) * 2);
+    EXPECT_LT(std::abs(d2), 60 * h / (0.3 * 0.3 * 0.3) * 2);
+  }
+  // Never negative, also in rounding just below the cutoff (the rows take sqrt(c T)); a run of
+  // 512 spheres hit a NaN from 1 - s^3 (10 - 15 s + 6 s^2) < 0 there.
+  for (int k = 0; k <= 100000; ++k) {
+    const double r = 2.5 - 1e-3 * k / 100000.0;
+    ASSERT_GE(taper_factor(r, opt), 0.0) << r;
+    ASSERT_FALSE(std::isnan(std::sqrt(at(r).squeeze))) << r;
+  }
+  // Mid-window: T = 1/2 and the slope is the smoothstep's -15/(8 w); the central difference is off
+  // by at most h^2 max|T'''|/6 = h^2 (60/w^3)/6.
+  EXPECT_NEAR(taper_factor(2.35, opt), 0.5, 1e-14);
+  const double slope = (taper_factor(2.35 + h, opt) - taper_factor(2.35 - h, opt)) / (2 * h);
+  EXPECT_NEAR(slope, -15.0 / (8 * 0.3), h * h * 10 / (0.3 * 0.3 * 0.3));
+}
+
+TEST(LubricationPair, ContactLeverIsTheRadiusAndOnlyTheCentreLeverKeepsRigidRotationFree) {
+  LubricationOptions centre, contact;
+  contact.lever = Lever::Contact;
+  const double r = 2.3;
+  const auto c = LubricationPair::coefficients(1.0, 1.0, r, kMu, contact);
+  EXPECT_EQ(c.lever_i, 1.0);
+  EXPECT_EQ(c.lever_j, 1.0);
+  // A pair rotating rigidly (u_j - u_i = W x r, w_i = w_j = W, W perpendicular to r) excites the
+  // shear mode with the contact lever by c_sh (r - 2a) W x d: a force on a rigid rotation.
+  const Vec3 d(0, 1, 0), W(0, 0, 1.0);
+  Vec12 v;
+  v << Vec3::Zero(), W, W.cross(r * d), W;
+  PairRows S;
+  LubricationPair::rows(1.0, 1.0, r * d, kMu, centre, S);
+  EXPECT_LT((S * v).norm(), 1e-14);
+  LubricationPair::rows(1.0, 1.0, r * d, kMu, contact, S);
+  const Vec12 f = pair_wrench(S, v);
+  EXPECT_NEAR(f.segment<3>(6).norm(), c.shear * (r - 2.0), 1e-12 * c.shear);
+}

@@ -122,7 +122,7 @@ TEST(StressObserver, WritesEinsteinViscosityAndParts) {
   const auto& t = sink.arrays.at("results/stress/sigma_particle").data;
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) EXPECT_NEAR(t[3 * i + j], t[3 * j + i], 1e-15);
-  EXPECT_EQ(sink.series.at("observables/stress/eta_r").steps.size(), 8u);
+  EXPECT_EQ(sink.series.at("timeseries/stress/eta_r").steps.size(), 8u);
   // Units: viscosity ratios are dimensionless, N1/N2/Pi are stresses in mu*gammadot, raw
   // stresses are in kT/a^3 (Brownian internal units: a = 1, kT = 1).
   EXPECT_EQ(sink.scalar("results/stress/eta_r").unit, "1");

@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <filesystem>
+#include <fstream>
 #include <set>
 #include <sstream>
 
@@ -114,10 +115,25 @@ void apply_override(YAML::Node root, const std::string& item) {
   } catch (const YAML::Exception& e) {
     throw ConfigError("--set " + item + ": value is not valid YAML: " + e.msg);
   }
+  // Dotted keys; a list entry by index in either form errors print or the dotted one:
+  // observers[2].every=10 or observers.2.every=10.
   std::vector<std::string> keys;
   std::stringstream ss(path);
-  for (std::string k; std::getline(ss, k, '.');) keys.push_back(k);
-  // A list (observers, forces) is addressed by its index: observers.2.every=10.
+  for (std::string k; std::getline(ss, k, '.');) {
+    std::size_t open = k.find('[');
+    if (open == std::string::npos) {
+      keys.push_back(k);
+      continue;
+    }
+    if (open > 0) keys.push_back(k.substr(0, open));
+    while (open != std::string::npos) {
+      const std::size_t close = k.find(']', open);
+      if (close == std::string::npos || (close + 1 < k.size() && k[close + 1] != '['))
+        throw ConfigError("--set " + item + ": expected KEY[INDEX] in '" + k + "'");
+      keys.push_back(k.substr(open + 1, close - open - 1));
+      open = close + 1 < k.size() ? close + 1 : std::string::npos;
+    }
+  }
   auto index = [&](const std::string& key, std::size_t size) {
     const bool digits = !key.empty() && key.find_first_not_of("0123456789") == std::string::npos;
     if (!digits)
@@ -186,6 +202,11 @@ Experiment read_experiment(const std::string& file, const std::vector<std::strin
   for (const auto& item : overrides) apply_override(root, item);
   Experiment ex;
   ex.file = file;
+  ex.overrides = overrides;
+  {
+    std::ifstream in(file, std::ios::binary);
+    ex.source_text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
   {
     YAML::Emitter emit;
     emit << root;

@@ -26,8 +26,10 @@ struct ObserverBlock {
 };
 
 struct Experiment {
-  std::string file;           // as given
-  std::string resolved_yaml;  // after --set overrides, for /parameters
+  std::string file;                    // as given
+  std::string source_text;             // the file byte for byte, for /parameters
+  std::vector<std::string> overrides;  // --set KEY=VALUE, in order
+  std::string resolved_yaml;           // after --set overrides, for /parameters
   std::vector<std::string> plugin_paths;
 
   PluginBlock shape;

@@ -9,6 +9,7 @@
 #include "io/Checkpoint.hpp"
 #include "io/Hdf5ResultSink.hpp"
 #include "run/Provenance.hpp"
+#include "run/RunUnits.hpp"
 #include "run/Simulation.hpp"
 
 namespace fldsim {
@@ -29,6 +30,8 @@ int run_experiment(const Experiment& ex, const PluginRegistry& registry, const R
   if (output.empty()) throw ConfigError(ex.file + ": output: no result file named (set `output:` or use -o)");
   // Opened first: it refuses an existing file before any Monte Carlo work is spent.
   Hdf5ResultSink sink(output, opt.overwrite);
+  const UserTimeUnit unit = user_time_unit(ex, physics_of(ex));  // before begin() writes a frame
+  sink.set_time_unit(unit.name, unit.scale);
   Experiment run = ex;
   run.output = output;
   Checkpoint resume;

@@ -8,6 +8,7 @@
 #include <omp.h>
 #endif
 
+#include "config/NumberText.hpp"
 #include "run/RunUnits.hpp"
 #include "run/StartConfiguration.hpp"
 
@@ -52,7 +53,7 @@ SimulationParts build_parts(const Experiment& ex, const PluginRegistry& registry
       << " nodes, volume " << v_body << " a^3), phi = " << ph.volume_fraction << ", box edge " << edge
       << " a\n"
       << "flow: "
-      << (ex.brownian ? "Pe = " + std::to_string(ex.peclet)
+      << (ex.brownian ? "Pe = " + format_number(ex.peclet)
                       : std::string("non-Brownian (kT = 0), gammadot = 1"))
       << "; times in " << unit.name << "\n";
 

@@ -5,6 +5,12 @@
 
 namespace fldsim::hydro {
 
+Vec3 BodyResistance::strain_arm(const Vec3& separation, const Vec3& centre_separation, double a_a,
+                                double a_b) const {
+  if (options_.strain_arm == StrainArm::Centre) return centre_separation;
+  return (a_a + a_b) / separation.norm() * separation;
+}
+
 bool BodyResistance::update(const System& system, const NodePairList& pairs) {
   const std::size_t m = system.nodes_per_body();
   bodies_ = system.size();
@@ -16,9 +22,10 @@ bool BodyResistance::update(const System& system, const NodePairList& pairs) {
   for (const NodePair& p : pairs.pairs()) {
     const Vec3* off_i = offsets.data() + std::size_t(p.body_i) * m;
     const Vec3* off_j = offsets.data() + std::size_t(p.body_j) * m;
-    if (!nodes_visible(off_i, off_j, radii_.data(), m, p.node_a, p.node_b, p.r, cutoff_)) continue;
-    candidates_.push_back(
-        {p.body_i, p.body_j, p.node_a, p.node_b, p.r, p.r - off_j[p.node_b] + off_i[p.node_a]});
+    if (!nodes_visible(off_i, off_j, radii_.data(), m, p.node_a, p.node_b, p.r, options_.cutoff)) continue;
+    const Vec3 centres = p.r - off_j[p.node_b] + off_i[p.node_a];
+    candidates_.push_back({p.body_i, p.body_j, p.node_a, p.node_b, p.r,
+                           strain_arm(p.r, centres, radii_[p.node_a], radii_[p.node_b])});
   }
   const bool changed = !(candidates_ == accepted_);
   if (changed) {
@@ -32,7 +39,7 @@ bool BodyResistance::update(const System& system, const NodePairList& pairs) {
   } else {
     for (std::size_t k = 0; k < accepted_.size(); ++k) {
       accepted_[k].separation = candidates_[k].separation;
-      accepted_[k].centre_separation = candidates_[k].centre_separation;
+      accepted_[k].arm = candidates_[k].arm;
     }
   }
 
@@ -96,10 +103,10 @@ void BodyResistance::sum_per_body(double* out) const {
 void BodyResistance::add_strain_force(const Eigen::Matrix3d& E, double* rhs) {
 #pragma omp parallel for schedule(static)
   for (std::int64_t k = 0; k < std::int64_t(accepted_.size()); ++k) {
-    // Mode velocities of the ambient flow: only the relative velocity E R_ij of node j enters
+    // Mode velocities of the ambient flow: only the relative velocity E L_ij of node j enters
     // (the rigid part Omega_inf cancels in every mode).
     const Eigen::Matrix<double, LubricationPair::kRows, 1> e =
-        rows_[k].middleCols<3>(6).lazyProduct(E * accepted_[k].centre_separation);
+        rows_[k].middleCols<3>(6).lazyProduct(E * accepted_[k].arm);
     pair_force_[k] = -(rows_[k].transpose().lazyProduct(e));
   }
   sum_per_body(rhs);
@@ -133,13 +140,14 @@ Eigen::Matrix3d BodyResistance::stresslet_sum(const Eigen::Matrix3d& E, const do
     const Eigen::Matrix<double, LubricationPair::kRows, 1> y =
         B.leftCols<6>().lazyProduct(Eigen::Map<const Vec6>(dU + 6 * std::size_t(p.body_i))) +
         B.rightCols<6>().lazyProduct(Eigen::Map<const Vec6>(dU + 6 * std::size_t(p.body_j))) +
-        B.middleCols<3>(6).lazyProduct(E * p.centre_separation);
+        B.middleCols<3>(6).lazyProduct(E * p.arm);
     // Hydrodynamic force of the pair on node j (f = -S^T S v, translational rows of node j).
     const Vec3 Fj = -(B.middleCols<3>(6).transpose().lazyProduct(y));
-    // Moment about the two body centres of the equal and opposite pair forces: -R_ij (x) F_j.
+    // Moment of the equal and opposite pair forces: -L_ij (x) F_j, with the same arm as the strain
+    // forcing so that R_SU = R_FE^T (about the two body centres for the Centre arm).
     // Sign: sigma = -p I + 2 mu E + (1/V) sum S; two bodies approaching along the compressional
     // axis d = (1,-1,0)/sqrt(2) are pushed apart (F_j along +d), giving S_xy > 0.
-    const Eigen::Matrix3d M = -p.centre_separation * Fj.transpose();
+    const Eigen::Matrix3d M = -p.arm * Fj.transpose();
     S += 0.5 * (M + M.transpose());
   }
   return S;

@@ -22,9 +22,8 @@ namespace fldsim::hydro {
 class BodyResistance {
  public:
   BodyResistance() = default;
-  BodyResistance(LubricationOptions options, double cutoff) : options_(options), cutoff_(cutoff) {}
+  explicit BodyResistance(LubricationOptions options) : options_(options) {}
 
-  double cutoff() const { return cutoff_; }
   // Select the visible pairs and evaluate their body-level rows. Returns true when the set of
   // accepted pairs differs from the previous call (the matrix pattern must then be rebuilt).
   bool update(const System& system, const NodePairList& pairs);
@@ -35,9 +34,10 @@ class BodyResistance {
   void bind(const BlockSparseMatrix& A);
   // A += R_delta (values only; the pattern must be bound).
   void add_to(BlockSparseMatrix& A) const;
-  // rhs += R_FE:E_inf of the pairs: -[S_i S_j]^T S_uj E R_ij, with R_ij = X_j - X_i the
-  // minimum-image centre separation (the relative ambient velocity seen by the pair once the body
-  // velocities are taken relative to U_inf at the body centres).
+  // rhs += R_FE:E_inf of the pairs: -[S_i S_j]^T S_uj E L_ij, with the strain arm L_ij either
+  // R_ij = X_j - X_i, the minimum-image centre separation (the relative ambient velocity of the two
+  // bodies once their velocities are taken relative to U_inf at the centres), or the contact
+  // distance (a_a + a_b) d of the node pair (LubricationOptions::strain_arm).
   void add_strain_force(const Eigen::Matrix3d& E, double* rhs);
   // FB += scale * sum_p B_p beta_p, beta_p from the pair's own noise stream.
   void add_brownian(const RandomStream& noise, std::size_t nodes_per_body, double scale, double* FB);
@@ -57,7 +57,7 @@ class BodyResistance {
     std::uint32_t body_i, body_j;
     std::uint16_t node_a, node_b;
     Vec3 separation;          // x(j,b) - x(i,a), minimum image
-    Vec3 centre_separation;   // X_j - X_i, minimum image
+    Vec3 arm;                 // strain arm L_ij (see add_strain_force)
     std::int64_t upper = -1;  // index of block (i, j) in the matrix
     bool operator==(const Accepted& o) const {
       return body_i == o.body_i && body_j == o.body_j && node_a == o.node_a && node_b == o.node_b;
@@ -67,8 +67,9 @@ class BodyResistance {
 
   void sum_per_body(double* out) const;  // out(6N) += sum of pair_force_ in pair order
 
+  Vec3 strain_arm(const Vec3& separation, const Vec3& centre_separation, double a_a, double a_b) const;
+
   LubricationOptions options_;
-  double cutoff_ = 2.5;
   std::size_t bodies_ = 0;
   std::vector<Accepted> accepted_, candidates_;
   std::vector<BodyRows> rows_;

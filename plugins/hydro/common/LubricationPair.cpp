@@ -16,6 +16,17 @@ Eigen::Matrix3d cross_matrix(const Vec3& d) {
 }
 }  // namespace
 
+double taper_factor(double r_over_abar, const LubricationOptions& options) {
+  if (options.taper_width <= 0.0) return 1.0;
+  const double s = (r_over_abar - options.cutoff + options.taper_width) / options.taper_width;
+  if (s <= 0.0) return 1.0;
+  if (s >= 1.0) return 0.0;
+  // 1 - s^3 (10 - 15 s + 6 s^2) written as (1-s)^3 (1 + 3 s + 6 s^2): non-negative in floating
+  // point too (the rows take its square root).
+  const double u = 1.0 - s;
+  return u * u * u * (1.0 + 3.0 * s + 6.0 * s * s);
+}
+
 LubricationCoefficients LubricationPair::coefficients(double a_i, double a_j, double r, double mu,
                                                       const LubricationOptions& options) {
   LubricationCoefficients c;
@@ -42,9 +53,16 @@ LubricationCoefficients LubricationPair::coefficients(double a_i, double a_j, do
   c.shear = 6.0 * kPi * mu * a_i * shear_log * log_inv;
 
   // Lever arms from each centre to the common point of the gap, splitting r in the ratio of the
-  // radii: l_i + l_j = r keeps the shear mode blind to rigid rotation (angular momentum).
-  c.lever_i = r * a_i / (a_i + a_j);
-  c.lever_j = r * a_j / (a_i + a_j);
+  // radii: l_i + l_j = r keeps the shear mode blind to rigid rotation (angular momentum); with
+  // c_sh this also gives Y^B_11 = -ln(1/xi)/4 - xi ln(1/xi)/8 exactly (reference §2b). LAMMPS
+  // uses the radii.
+  if (options.lever == Lever::Centre) {
+    c.lever_i = r * a_i / (a_i + a_j);
+    c.lever_j = r * a_j / (a_i + a_j);
+  } else {
+    c.lever_i = a_i;
+    c.lever_j = a_j;
+  }
 
   const double a_h = 2.0 * a_i * a_j / (a_i + a_j);  // = a at lam = 1
   if (options.pump == PumpForm::JeffreyOnishi) {
@@ -70,6 +88,14 @@ LubricationCoefficients LubricationPair::coefficients(double a_i, double a_j, do
     // torque 2 c_tw w_i, hence c_tw = 8 pi mu a^3 (zeta(3) - 1)/2. For lam != 1 the radius is the
     // harmonic mean a_h (a modelling choice; only lam = 1 is validated).
     c.twist = 8.0 * kPi * mu * a_h * a_h * a_h * 0.5 * (kZeta3 - 1.0);
+  }
+
+  c.taper = taper_factor(r / abar, options);
+  if (c.taper != 1.0) {
+    c.squeeze *= c.taper;
+    c.shear *= c.taper;
+    c.pump *= c.taper;
+    c.twist *= c.taper;
   }
   return c;
 }

@@ -13,6 +13,10 @@
 //          l_i = r a_i/(a_i + a_j); P = I - d d^T)
 //   4..6  pump:    P (w_i - w_j)                                   [Y^C, log]
 //   7     twist:   d.(w_i - w_j)                                   [X^C, contact value]
+// Every coefficient is multiplied by a taper T(r) that takes it smoothly (C2) to zero over a window
+// below the cutoff, so R_delta, and the mobility, are continuous when a pair enters or leaves the
+// list: a jump there has a thermal drift kT div M that no finite-step scheme represents (the
+// equilibrium g(r) then shows a step at the cutoff; docs/lubrication-taper.md).
 #pragma once
 
 #include <Eigen/Core>
@@ -22,12 +26,29 @@
 namespace fldsim::hydro {
 
 enum class PumpForm { JeffreyOnishi, Lammps };
+// Lever arms of the shear mode: from each centre to the common point of the gap, splitting r in
+// the ratio of the radii (Centre: l_i + l_j = r, a rigidly rotating pair is force-free), or the
+// node radii as LAMMPS pair lubricateU does (Contact: l = a).
+enum class Lever { Centre, Contact };
+// Arm of the ambient strain seen by a pair (BodyResistance): the body-centre separation R_ij,
+// the relative motion of the two bodies in the imposed flow (Centre), or the contact distance
+// (a_i + a_j) d along the node pair, the fluid's relative velocity between the two contact points
+// as LAMMPS pair lubricateU uses it (Contact).
+enum class StrainArm { Centre, Contact };
 
 struct LubricationOptions {
   double delta_num = 1e-5;  // gaps (in abar) below this are evaluated at delta_num
   PumpForm pump = PumpForm::JeffreyOnishi;
   bool twist = true;
+  Lever lever = Lever::Centre;
+  StrainArm strain_arm = StrainArm::Centre;
+  double cutoff = 2.5;       // node centre distance (in abar) where pairs end
+  double taper_width = 0.0;  // 0: abrupt cutoff; else coefficients go to zero over [cutoff - w, cutoff]
 };
+
+// C2 switch-off: 1 for r <= cutoff - w, 0 for r >= cutoff, (1-s)^3 (1 + 3 s + 6 s^2) between,
+// s = (r - cutoff + w)/w (all in abar). Value and first two derivatives vanish at both ends.
+double taper_factor(double r_over_abar, const LubricationOptions& options);
 
 // Mode coefficients c_m (force/velocity units, already dimensional).
 struct LubricationCoefficients {
@@ -36,6 +57,7 @@ struct LubricationCoefficients {
   double shear = 0.0;    // c_sh
   double pump = 0.0;     // c_pu
   double twist = 0.0;    // c_tw
+  double taper = 1.0;    // T(r), already applied to the four coefficients above
   double lever_i = 0.0;  // l_i
   double lever_j = 0.0;  // l_j
 };

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "fldsim/error.hpp"
+#include "fldsim/number_text.hpp"
 
 namespace fldsim::hydro {
 
@@ -17,17 +18,37 @@ struct FitCoefficients {
 // phi, Newton to |d_s - target| < 2e-4 at phi = 0.1 ... 0.5); f_r is Kumar & Higdon's (fitting it
 // to d_r drives it to zero by phi = 0.4, see docs/fld-r0-fit.md).
 constexpr FitCoefficients kFldsimFit{0.5361, -4.6621, 0.749, -2.469};
+// Width of the default smooth taper, in a (chosen by measurement: docs/lubrication-taper.md).
+constexpr double kDefaultTaperWidth = 0.3;
 }  // namespace
 
 void describe_lubrication_params(ParamSchema& s) {
+  s.choice("conventions", std::string("fldsim"), {"fldsim", "lammps"},
+           "pair forms: fldsim's defaults, or exactly LAMMPS pair lubricateU (pump lammps, twist false, "
+           "lever contact, strain_arm contact, taper none, and for fld r0_fit kumar_higdon); keys set "
+           "explicitly must agree with the preset");
   s.number("cutoff", 2.5, "a",
            "node centre distance below which a node pair is lubricated (scaled by the mean radius)")
       .greater(2.0)
       .less(3.0);
+  s.choice("taper", std::string("none"), {"smooth", "none"},
+           "switch-off of the pair terms below the cutoff: smooth (C2, over taper_width; continuous "
+           "mobility, exact equilibrium) or none (abrupt: a mobility jump at the cutoff; "
+           "docs/lubrication-taper.md)");
+  s.number("taper_width", kDefaultTaperWidth, "a", "width of the smooth taper below the cutoff")
+      .greater(0.0)
+      .at_most(0.5);
   s.number("delta_num", 1e-5, "a", "gaps below this are evaluated at this gap").greater(0.0).less(0.1);
   s.choice("pump", std::string("jeffrey_onishi"), {"jeffrey_onishi", "lammps"},
            "counter-rotation (pump) coefficient: Jeffrey-Onishi (3/40) or LAMMPS lubricateU (3/160)");
   s.flag("twist", true, "include the twist mode (relative rotation about the line of centres)");
+  s.choice("lever", std::string("centre"), {"centre", "contact"},
+           "shear-mode lever arms: centre (r a_i/(a_i+a_j), sums to r: rigid rotation is force-free) "
+           "or contact (the node radii, as LAMMPS); docs/two-body.md");
+  s.choice(
+      "strain_arm", std::string("centre"), {"centre", "contact"},
+      "ambient strain seen by a pair: E R_ij with the body-centre separation (the bodies' relative "
+      "motion in the imposed flow) or E (a_i+a_j) d, the contact distance (as LAMMPS); docs/two-body.md");
   s.number("tolerance", 1e-6, "", "relative residual of the conjugate-gradient solve").greater(0.0).less(1.0);
   s.integer("max_iterations", 1000L, "", "conjugate-gradient iteration limit").at_least(1);
   s.choice("preconditioner", std::string("incomplete_cholesky"), {"incomplete_cholesky", "block_jacobi"},
@@ -35,12 +56,36 @@ void describe_lubrication_params(ParamSchema& s) {
            "dependency levels) or block Jacobi (parallel; more iterations)");
 }
 
+bool lammps_conventions(const Params& p) {
+  return p.text("conventions") == "lammps";
+}
+
+const std::string& convention_choice(const Params& p, const std::string& key, const std::string& preset) {
+  if (!lammps_conventions(p)) return p.text(key);
+  if (p.given(key) && p.text(key) != preset)
+    p.fail(key, "'" + p.text(key) + "' contradicts conventions: lammps (which sets " + key + ": " + preset +
+                    "); remove one of the two");
+  static thread_local std::string value;
+  value = preset;
+  return value;
+}
+
 ModelSettings read_lubrication_params(const Params& p) {
   ModelSettings s;
-  s.cutoff = p.number("cutoff");
+  const bool lammps = lammps_conventions(p);
+  s.lub.cutoff = p.number("cutoff");
   s.lub.delta_num = p.number("delta_num");
-  s.lub.pump = p.text("pump") == "lammps" ? PumpForm::Lammps : PumpForm::JeffreyOnishi;
-  s.lub.twist = p.flag("twist");
+  s.lub.pump =
+      convention_choice(p, "pump", "lammps") == "lammps" ? PumpForm::Lammps : PumpForm::JeffreyOnishi;
+  if (lammps && p.given("twist") && p.flag("twist"))
+    p.fail("twist", "true contradicts conventions: lammps (which has no twist mode); remove one of the two");
+  s.lub.twist = lammps ? false : p.flag("twist");
+  s.lub.lever = convention_choice(p, "lever", "contact") == "contact" ? Lever::Contact : Lever::Centre;
+  s.lub.strain_arm =
+      convention_choice(p, "strain_arm", "contact") == "contact" ? StrainArm::Contact : StrainArm::Centre;
+  s.lub.taper_width = convention_choice(p, "taper", "none") == "none" ? 0.0 : p.number("taper_width");
+  if (s.lub.taper_width >= s.lub.cutoff - 2.0)
+    p.fail("taper_width", "must be smaller than cutoff - 2 (the taper would reach contact)");
   s.tolerance = p.number("tolerance");
   s.max_iterations = int(p.integer("max_iterations"));
   s.preconditioner = p.text("preconditioner") == "block_jacobi" ? Preconditioner::BlockJacobi
@@ -72,7 +117,7 @@ double ResistanceModel::pair_range(const System& system) const {
   if (!settings_.lubrication) return 0.0;
   double a = 0.0;
   for (std::size_t k = 0; k < system.nodes_per_body(); ++k) a = std::max(a, system.node_radius(k));
-  return settings_.cutoff * a;
+  return settings_.lub.cutoff * a;
 }
 
 std::vector<std::string> ResistanceModel::configure(const System& system, const HydroRequest& request) {
@@ -85,10 +130,10 @@ std::vector<std::string> ResistanceModel::configure(const System& system, const 
                                  : isotropic_factors(settings_.fit, system.physics().volume_fraction);
   if (f.translation <= 0.0 || f.rotation <= 0.0)
     throw Error("hydro: the R_0(phi) fit (calibrated for phi <= 0.5) is not positive at phi = " +
-                std::to_string(system.physics().volume_fraction));
+                number_text(system.physics().volume_fraction));
   iso_ = IsotropicResistance(settings_.isotropic, f);
   iso_.configure(system);
-  lub_ = BodyResistance(settings_.lub, settings_.cutoff);
+  lub_ = BodyResistance(settings_.lub);
   const std::size_t n = system.size();
   A_.set_pattern(n, {});
   strain_force_.assign(6 * n, 0.0);

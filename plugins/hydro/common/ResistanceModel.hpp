@@ -29,15 +29,21 @@ struct ModelSettings {
   IsotropicFit fit = IsotropicFit::None;          // which R_0(phi) correction (fld)
   std::optional<IsotropicFactors> fixed_factors;  // calibration only: use these, ignore fit
   LubricationOptions lub;
-  double cutoff = 2.5;
   double tolerance = 1e-6;
   int max_iterations = 1000;
   Preconditioner preconditioner = Preconditioner::IncompleteCholesky;
 };
 
-// Declare and read the parameters common to lubrication and fld.
+// Declare and read the parameters common to lubrication and fld. `conventions: lammps` presets
+// the pair forms of LAMMPS pair lubricateU (pump, twist, lever, strain arm, no taper); a key set
+// explicitly to a different value is an error.
 void describe_lubrication_params(ParamSchema& schema);
 ModelSettings read_lubrication_params(const Params& params);
+// True when `conventions: lammps` was chosen (fld also presets r0_fit from it).
+bool lammps_conventions(const Params& params);
+// The value of choice `key`: the user's if given, else `preset` under conventions: lammps, else
+// the schema default. A given value that contradicts the preset is a configuration error.
+const std::string& convention_choice(const Params& params, const std::string& key, const std::string& preset);
 
 class ResistanceModel : public HydroModel {
  public:

@@ -14,7 +14,7 @@ class Fld : public fldsim::hydro::ResistanceModel {
              "scaled by the phi fit");
     s.choice("r0_fit", std::string("fldsim"), {"fldsim", "kumar_higdon"},
              "R_0(phi) correction: fldsim's refit for its Jeffrey-Onishi forms, or Kumar & Higdon's fit "
-             "made for the LAMMPS forms (use with pump: lammps, twist: false for LAMMPS parity)");
+             "made for the LAMMPS forms (conventions: lammps sets it)");
   }
   explicit Fld(const fldsim::Params& p) : ResistanceModel(settings(p)) {}
 
@@ -22,8 +22,9 @@ class Fld : public fldsim::hydro::ResistanceModel {
   static fldsim::hydro::ModelSettings settings(const fldsim::Params& p) {
     auto s = fldsim::hydro::read_lubrication_params(p);
     s.lubrication = true;
-    s.fit = p.text("r0_fit") == "kumar_higdon" ? fldsim::hydro::IsotropicFit::KumarHigdon
-                                               : fldsim::hydro::IsotropicFit::Fldsim;
+    s.fit = fldsim::hydro::convention_choice(p, "r0_fit", "kumar_higdon") == "kumar_higdon"
+                ? fldsim::hydro::IsotropicFit::KumarHigdon
+                : fldsim::hydro::IsotropicFit::Fldsim;
     s.isotropic = p.text("isotropic") == "body" ? fldsim::hydro::IsotropicForm::Body
                                                 : fldsim::hydro::IsotropicForm::Sphere;
     return s;
