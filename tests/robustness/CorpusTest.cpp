@@ -467,7 +467,7 @@ TEST_F(Corpus, CommandLine) {
   cli("--set into a value", {"check", "in.yaml", "--set", "run.dt.x=1"},
       "^--set run\\.dt\\.x=1: run\\.dt: is a value \\(0\\.01\\), not a section");
   cli("--set bad value", {"check", "in.yaml", "--set", "run.dt=abc"},
-      "^--set run\\.dt=abc: run\\.dt: expected a number > 0, got 'abc'");
+      "^--set run\\.dt=abc: run\\.dt: expected a number > 0 or auto, got 'abc'");
   cli("--set out of range", {"run", "in.yaml", "--set", "system.count=0"},
       "^--set system\\.count=0: system\\.count: expected an integer >= 1");
   cli("--set unknown key", {"check", "in.yaml", "--set", "run.dtt=1"},

@@ -54,6 +54,33 @@ TEST(DiskFull, ResultFileFullStopsWithOneLineAndKeepsTheLastCheckpoint) {
   EXPECT_GT(last.step, 0);
 }
 
+// Another error ends the run while the result file's last data still sit in HDF5's cache and
+// the disk is full: the unwinding close met the full disk and crashed (SIGSEGV in H5F__close)
+// until the sink flushed first. The plugin's error is the one line; nothing crashes.
+TEST(DiskFull, ErrorMidRunWithAFullDiskDoesNotCrash) {
+  corpus::Case c = disk_full(".part", 200000);
+  c.files["in.yaml"] =
+      "system: {shape: {plugin: dicolloid}, count: 27, volume_fraction: 0.05}\n"
+      "flow: {peclet: 1}\n"
+      "hydro: {plugin: free_draining}\n"
+      "run: {dt: 0.01, duration: 2, threads: 1, checkpoint_every: 0.5}\n"
+      "observers: [{plugin: trajectory, every: 1}, {plugin: orientation, every: 1},\n"
+      "            {plugin: hostile_throw_sample, when: 103}]\n"
+      "plugins: {paths: [" HOSTILE_DIR
+      "/throw_in_sample]}\n"
+      "output: out.h5\n";
+  c.lines = {"^fldsim: error: observer plugin 'hostile_throw_sample' .*sample gives up"};
+  c.may_leave = {"out.h5.part", "out.h5.checkpoint"};
+  const fs::path dir = dir_for("error-mid-run");
+  const corpus::Outcome o = corpus::run_case(c, dir);
+  const corpus::Verdict v = corpus::judge(c, o);
+  EXPECT_TRUE(v.clear && !v.crash) << v.why;
+  EXPECT_FALSE(fs::exists(dir / "out.h5")) << "a half result under the real name";
+  ASSERT_TRUE(fs::exists(dir / "out.h5.checkpoint")) << o.err;
+  EXPECT_EQ(fldsim::read_checkpoint((dir / "out.h5.checkpoint").string()).step, 100)
+      << "the last periodic checkpoint before the error";
+}
+
 TEST(DiskFull, CheckpointFullKeepsThePreviousCheckpoint) {
   // First a run without failures, to learn what one checkpoint writes.
   corpus::Case measure = disk_full("nothing-matches-this", 0);

@@ -4,8 +4,11 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
+#include <new>
+#include <stdexcept>
 
 #include "fldsim/error.hpp"
 #include "io/H5Helpers.hpp"
@@ -23,7 +26,11 @@ void write_matrix(H5::Group& g, const std::string& name, const double* data, hsi
   if (rows > 0) d.write(data, H5::PredType::NATIVE_DOUBLE);
 }
 
-std::vector<double> read_doubles(const H5::Group& g, const std::string& name, hsize_t cols, hsize_t& rows) {
+// file_bytes bounds the extent: checkpoints are written contiguous and uncompressed, so a
+// dataset holds at most the file's bytes; a larger extent is a corrupt size, refused before
+// anything is allocated for it.
+std::vector<double> read_doubles(const H5::Group& g, const std::string& name, hsize_t cols, hsize_t& rows,
+                                 std::uintmax_t file_bytes) {
   H5::DataSet d = g.openDataSet(name);
   const H5::DataSpace space = d.getSpace();
   const int rank = space.getSimpleExtentNdims();
@@ -33,6 +40,9 @@ std::vector<double> read_doubles(const H5::Group& g, const std::string& name, hs
   if (cols && dims[1] != cols)
     throw H5::DataSetIException("read_checkpoint", name + " has the wrong row length");
   rows = dims[0];
+  if (rows > file_bytes / sizeof(double) / (cols ? cols : 1))
+    throw H5::DataSetIException("read_checkpoint", name + " claims " + std::to_string(rows) +
+                                                       " rows, more than the file can hold (corrupt)");
   std::vector<double> v(rows * (cols ? cols : 1));
   if (!v.empty()) d.read(v.data(), H5::PredType::NATIVE_DOUBLE);
   return v;
@@ -44,9 +54,9 @@ void write_vec3s(H5::Group& g, const std::string& name, const std::vector<Vec3>&
   write_matrix(g, name, v.empty() ? nullptr : v.front().data(), v.size(), 3);
 }
 
-std::vector<Vec3> read_vec3s(const H5::Group& g, const std::string& name) {
+std::vector<Vec3> read_vec3s(const H5::Group& g, const std::string& name, std::uintmax_t file_bytes) {
   hsize_t rows = 0;
-  const std::vector<double> flat = read_doubles(g, name, 3, rows);
+  const std::vector<double> flat = read_doubles(g, name, 3, rows, file_bytes);
   std::vector<Vec3> v(rows);
   for (hsize_t i = 0; i < rows; ++i) v[i] = Vec3(flat[3 * i], flat[3 * i + 1], flat[3 * i + 2]);
   return v;
@@ -153,6 +163,9 @@ Checkpoint read_checkpoint(const std::string& path) {
   io::quiet_hdf5();
   if (!std::filesystem::exists(path)) throw Error(path + ": checkpoint file not found");
   Checkpoint c;
+  std::error_code size_error;
+  const std::uintmax_t bytes = std::filesystem::file_size(path, size_error);
+  if (size_error) throw Error(path + ": cannot read the checkpoint: " + size_error.message());
   try {
     H5::H5File file(path, H5F_ACC_RDONLY);
     H5::Group root = file.openGroup("/");
@@ -164,15 +177,15 @@ Checkpoint read_checkpoint(const std::string& path) {
                   (version.empty() ? "?" : std::to_string(version[0])) + " is not the supported version " +
                   std::to_string(kFormatVersion));
 
-    c.positions = read_vec3s(root, "positions");
-    c.displacement = read_vec3s(root, "displacement");
-    c.nonaffine = read_vec3s(root, "nonaffine");
+    c.positions = read_vec3s(root, "positions", bytes);
+    c.displacement = read_vec3s(root, "displacement", bytes);
+    c.nonaffine = read_vec3s(root, "nonaffine", bytes);
     hsize_t rows = 0;
-    const std::vector<double> q = read_doubles(root, "orientations", 4, rows);
+    const std::vector<double> q = read_doubles(root, "orientations", 4, rows, bytes);
     c.orientations.resize(rows);
     for (hsize_t i = 0; i < rows; ++i)
       c.orientations[i] = Quat(q[4 * i], q[4 * i + 1], q[4 * i + 2], q[4 * i + 3]);
-    c.warm_start = read_doubles(root, "warm_start", 0, rows);
+    c.warm_start = read_doubles(root, "warm_start", 0, rows, bytes);
 
     c.time = read_value<double>(root, "time", H5::PredType::NATIVE_DOUBLE);
     c.strain = read_value<double>(root, "strain", H5::PredType::NATIVE_DOUBLE);
@@ -184,10 +197,14 @@ Checkpoint read_checkpoint(const std::string& path) {
     H5::Group blobs = root.openGroup("blobs");
     for (hsize_t i = 0; i < blobs.getNumObjs(); ++i) {
       const std::string name = blobs.getObjnameByIdx(i);
-      c.blobs[name] = read_doubles(blobs, name, 0, rows);
+      c.blobs[name] = read_doubles(blobs, name, 0, rows, bytes);
     }
   } catch (const H5::Exception& e) {
     io::fail(path, "cannot read the checkpoint", e);
+  } catch (const std::bad_alloc&) {  // a size no check above bounds (a string's length)
+    throw Error(path + ": cannot read the checkpoint: a size in it exceeds the memory (corrupt file)");
+  } catch (const std::length_error&) {
+    throw Error(path + ": cannot read the checkpoint: a size in it exceeds the memory (corrupt file)");
   }
   const std::size_t n = c.positions.size();
   if (c.orientations.size() != n || c.displacement.size() != n || c.nonaffine.size() != n)

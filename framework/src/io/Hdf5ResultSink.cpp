@@ -108,6 +108,17 @@ Hdf5ResultSink::~Hdf5ResultSink() {
   // An uncommitted run keeps its data in `<path>.part` (never under the real name).
   if (!open_) return;
   const io::QuietCerr quiet;
+  if (!failed_ && !io::write_failed()) {
+    // Unwinding from another error (a failed step, a plugin's exception): data still in HDF5's
+    // cache may meet a full disk only now. Flushing first finds that without the crash of a
+    // close after a failed write (below).
+    try {
+      file_->flush(H5F_SCOPE_GLOBAL);
+    } catch (const H5::Exception&) {
+      failed_ = true;
+      io::note_write_failure();
+    }
+  }
   if (failed_ || io::write_failed()) {
     // After a failed write (a full disk) HDF5 1.10 can crash closing a file (SIGSEGV in
     // H5F__close): the handles are left open instead, and the program, which has failed,
