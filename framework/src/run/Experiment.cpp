@@ -110,7 +110,8 @@ ParamSchema run_schema() {
       .at_least(0.0);
   s.choice("progress", "auto", {"auto", "on", "off"},
            "progress lines on stderr (the `progress` observer with its defaults): auto = on for runs of "
-           "1000 steps or more; off also by -q; an experiment listing `progress` itself uses that");
+           "1000 steps (with dt: auto, frames of dt_max) or more; off also by -q; an experiment listing "
+           "`progress` itself uses that");
   s.integer("threads", 0, "",
             "OpenMP threads; 0 = automatic: OMP_NUM_THREADS if set, else the idle usable cores, at most one "
             "per 2000 bodies, kept after the first 13 steps only if measurably faster than one thread "

@@ -19,8 +19,8 @@
 namespace fldsim {
 namespace {
 
-// Runs of this many steps or more report progress unless told not to (run.progress, -q): a
-// silent run of minutes looks hung.
+// Runs of this many steps (frames of dt_max with dt: auto) or more report progress unless told
+// not to (run.progress, -q): a silent run of minutes looks hung.
 constexpr std::int64_t kProgressSteps = 1000;
 
 // The experiment with a `progress` observer (default parameters) appended when run.progress
