@@ -68,7 +68,7 @@ enum class Preconditioner { BlockJacobi, IncompleteCholesky };
 // are kept between calls; x holds the warm start on entry. Converged when |b - A x| <= tol |b|.
 // The preconditioners (block Jacobi, block incomplete Cholesky IC(0)) and the work vectors live
 // in the core behind a pointer (framework/src/linalg), so tuning them changes no type that a
-// plugin compiles against (API 3.0; before, IC(0)'s members were in this header).
+// plugin compiles against (API 4.0; before, IC(0)'s members were in this header).
 class FLDSIM_VISIBLE BlockPCG {
  public:
   struct Result {

@@ -48,7 +48,7 @@ class FLDSIM_VISIBLE HydroModel : public Component {
   virtual SolveStats last_solve() const { return {}; }
   // Whether the model computes stresslet_sum. A model that does not cannot run with an observer
   // that needs the stress pieces (`stress`): the core refuses the experiment rather than report a
-  // hydrodynamic stress of zero. (API 3.0: every model must say.)
+  // hydrodynamic stress of zero. (API 4.0: every model must say.)
   virtual bool provides_stresslets() const = 0;
   // Sum over bodies of the hydrodynamic stresslet S^H = -(R_SU dU - R_SE:E_inf) (3x3, symmetric),
   // for the velocities of the last solve. Only called when HydroRequest::stresslets was set, which
