@@ -22,6 +22,7 @@
 #include "plugins/PluginRegistry.hpp"
 #include "run/Experiment.hpp"
 #include "run/RunExperiment.hpp"
+#include "run/Simulation.hpp"
 
 namespace {
 

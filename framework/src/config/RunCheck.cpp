@@ -3,6 +3,7 @@
 #include <sys/statvfs.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -22,6 +23,7 @@
 #include "geometry/HardBodyMonteCarlo.hpp"
 #include "io/Checkpoint.hpp"
 #include "io/FrameReader.hpp"
+#include "run/Simulation.hpp"
 
 namespace fldsim {
 
@@ -275,6 +277,14 @@ RunCheckReport check_run(const Experiment& ex, const PluginRegistry& registry, c
   note_shadowed(ex.hydro);
   for (const auto& f : ex.forces) note_shadowed(f);
   for (const auto& o : ex.observers) note_shadowed(o.plugin);
+  // What an observer needs from the hydro model (stresslets), refused as the run would.
+  if (hydro && std::all_of(observers.begin(), observers.end(), [](const auto& o) { return o != nullptr; })) {
+    try {
+      check_observer_needs(ex, *hydro, observers);
+    } catch (const ConfigError& e) {
+      problems.formatted(e.what());
+    }
+  }
 
   // One result dataset per observer: two instances of one plugin would write (append to) the
   // same paths.
