@@ -76,6 +76,9 @@ class GuardedHydro final : public HydroModel {
   SolveStats last_solve() const override {
     return plugin_call(who_, "last_solve()", [&] { return in_->last_solve(); });
   }
+  bool provides_stresslets() const override {
+    return plugin_call(who_, "provides_stresslets()", [&] { return in_->provides_stresslets(); });
+  }
   Eigen::Matrix3d stresslet_sum(const System& s, const NodePairList& p, const double* dU) override {
     return plugin_call(who_, "stresslet_sum()",
                        [&] { return Eigen::Matrix3d(in_->stresslet_sum(s, p, dU)); });
