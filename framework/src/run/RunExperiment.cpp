@@ -68,10 +68,13 @@ int stop_early(Simulation& sim, Hdf5ResultSink& sink, const std::string& checkpo
   sink.write_attribute("/parameters", "run_status", status.str());
   write_checkpoint(checkpoint_path, state);
   sink.commit();
-  std::cerr << "fldsim: " << status.str() << "; results so far in " << sink.path() << ", state in "
+  // std::clog, not std::cerr: -q mutes std::cerr while the run lasts (main.cpp), and the
+  // interruption, like an error, must still be said.
+  std::clog << "fldsim: " << status.str() << "; results so far in " << sink.path() << ", state in "
             << checkpoint_path << "; continue with: fldsim run " << ex.file << " --resume " << checkpoint_path
             << " -o NEW.h5\n";
-  if (!incomplete.empty()) std::cerr << "fldsim: results so far lack some summaries: " << incomplete << "\n";
+  if (!incomplete.empty()) std::clog << "fldsim: results so far lack some summaries: " << incomplete << "\n";
+  std::clog.flush();
   return 128 + signal;
 }
 
