@@ -44,10 +44,10 @@ void describe_lubrication_params(ParamSchema& s) {
   s.choice("lever", std::string("centre"), {"centre", "contact"},
            "shear-mode lever arms: centre (r a_i/(a_i+a_j), sums to r: rigid rotation is force-free) "
            "or contact (the node radii, as LAMMPS); docs/two-body.md");
-  s.choice(
-      "strain_arm", std::string("centre"), {"centre", "contact"},
-      "ambient strain seen by a pair: E R_ij with the body-centre separation (the bodies' relative "
-      "motion in the imposed flow) or E (a_i+a_j) d, the contact distance (as LAMMPS); docs/two-body.md");
+  s.choice("strain_arm", std::string("contact"), {"centre", "contact"},
+           "ambient strain seen by a pair: contact, the body-centre separation less the node gap (for "
+           "spheres the contact distance (a_i+a_j) d, as LAMMPS; closer to the exact two-sphere A, B, C), "
+           "or centre, E R_ij with the body-centre separation; docs/two-body.md");
   s.number("tolerance", 1e-6, "", "relative residual of the conjugate-gradient solve").greater(0.0).less(1.0);
   s.integer("max_iterations", 1000L, "", "conjugate-gradient iteration limit").at_least(1);
   s.choice("preconditioner", std::string("incomplete_cholesky"), {"incomplete_cholesky", "block_jacobi"},
