@@ -51,13 +51,22 @@ function(fldsim_add_plugin name)
   target_link_options(${target} PRIVATE -Wl,--no-undefined)
 
   # Where the installed plugin finds libfldsim when something other than the fldsim executable
-  # loads it (ldd, a test program). In the fldsim tree the core sits two levels up
-  # (<libdir>/fldsim/plugins -> <libdir>); a third-party plugin keeps the path it linked with.
-  get_target_property(core_imported fldsim::core IMPORTED)
-  if(core_imported)
+  # loads it (ldd, a test program): relative to itself, so a prefix can be moved. Installed in
+  # fldsim's own prefix (the default layout) the core sits at <libdir>, i.e. $ORIGIN/../.. from
+  # <libdir>/fldsim/plugins. A third-party plugin installed elsewhere also keeps, after that, the
+  # directory of the core it linked with.
+  if(IS_ABSOLUTE "${install_dir}")
     set_target_properties(${target} PROPERTIES INSTALL_RPATH_USE_LINK_PATH ON)
   else()
-    set_target_properties(${target} PROPERTIES INSTALL_RPATH "$ORIGIN/../..")
+    file(RELATIVE_PATH to_core /${install_dir} /${CMAKE_INSTALL_LIBDIR})
+    set(rpath "$ORIGIN/${to_core}")
+    get_target_property(core_imported fldsim::core IMPORTED)
+    if(core_imported)
+      get_target_property(core_file fldsim::core LOCATION)
+      get_filename_component(core_dir "${core_file}" DIRECTORY)
+      list(APPEND rpath "${core_dir}")
+    endif()
+    set_target_properties(${target} PROPERTIES INSTALL_RPATH "${rpath}")
   endif()
 
   install(TARGETS ${target} LIBRARY DESTINATION ${install_dir})

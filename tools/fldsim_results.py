@@ -1,9 +1,10 @@
 """Reading helpers for fldsim result files (HDF5), shared by the plotting scripts.
 
 Layout written by the core and the observers:
-  /parameters              attributes peclet, volume_fraction, shape, shape_c, time_unit (strings)
+  /parameters              attributes peclet, volume_fraction, shape_c (numbers), shape, time_unit
   /results/<observer>/<q>  scalar datasets with attributes unit and stderr; arrays
-  /observables/<name>/<q>  H5MD time series: groups with step, time, value
+  /timeseries/<name>/<q>   H5MD time series: groups with step, time (run's unit), value
+                           (files before 2026-12 kept them under /observables, times in a^2/D0)
 """
 import math
 
@@ -53,9 +54,24 @@ def array(h5, path):
     return np.asarray(d[()])
 
 
+def _series_group(h5, path):
+    g = h5.get(path)
+    if g is None and path.startswith("timeseries/"):  # older files
+        g = h5.get("observables/" + path[len("timeseries/"):])
+    return g
+
+
+def series_time_unit(h5, path):
+    """The unit of a time series' time, as stored ("a^2/D0" for files without one)."""
+    g = _series_group(h5, path)
+    if g is None or "time" not in g:
+        return "a^2/D0"
+    return text(g["time"].attrs.get("unit", "a^2/D0"))
+
+
 def series(h5, path):
     """(time, value) of an H5MD time series, or None."""
-    g = h5.get(path)
+    g = _series_group(h5, path)
     if g is None or "value" not in g or "time" not in g:
         return None
     return np.asarray(g["time"][()]), np.asarray(g["value"][()])

@@ -139,9 +139,9 @@ def plot_diffusion(h5, title, out, written, skipped):
 
 
 def plot_series(h5, title, out, written):
-    wanted = [("observables/orientation/theta_m", r"$\theta_m$ (rad)"), ("observables/orientation/phi_m",
-                                                                         r"$\phi_m$ (rad)"),
-              ("observables/stress/eta_r", r"$\eta_r$")]
+    wanted = [("timeseries/orientation/theta_m", r"$\theta_m$ (rad)"),
+              ("timeseries/orientation/phi_m", r"$\phi_m$ (rad)"),
+              ("timeseries/stress/eta_r", r"$\eta_r$")]
     found = [(p, l, fr.series(h5, p)) for p, l in wanted]
     found = [(p, l, s) for p, l, s in found if s is not None and len(s[0]) > 0]
     if not found:
@@ -150,7 +150,7 @@ def plot_series(h5, title, out, written):
     for ax, (_, label, (t, v)) in zip(axes[:, 0], found):
         ax.plot(t, v, lw=0.8)
         ax.set_ylabel(label)
-    axes[-1, 0].set_xlabel(r"t ($a^2/D_0$)")
+    axes[-1, 0].set_xlabel(f"t ({fr.series_time_unit(h5, found[0][0])})")
     axes[0, 0].set_title(title, fontsize=9)
     save(fig, out, "time_series.png", written)
 

@@ -106,3 +106,11 @@ def compare(observed, reference):
         error = abs(value - ref)
         out[name] = (error, combined, error <= CONSISTENT_SE * combined)
     return out
+
+
+def step_statistics(path):
+    """{name: value} of /results/steps (accepted and rejected steps, dt quantiles, smallest gap)."""
+    with h5py.File(path, "r") as f:
+        if "/results/steps" not in f:
+            return {}
+        return {name: float(d[()]) for name, d in f["/results/steps"].items()}

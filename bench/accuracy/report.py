@@ -12,6 +12,7 @@ FAMILY_STYLE = {  # marker, colour
     "tolerance": ("s", "tab:orange"),
     "cutoff": ("^", "tab:green"),
     "combined": ("D", "tab:purple"),
+    "adaptive": ("v", "tab:brown"),
     "reference": ("X", "tab:red"),
     "numerical reference": ("P", "tab:red"),
 }
@@ -49,7 +50,7 @@ def deterministic_table(rows):
         s, t = r["setting"], r["timing"]
         name = f"**{s.family}**" if s.is_default else s.family
         lines.append(
-            f"| {name} | {s.dt:g} | {s.tolerance:g} | {s.cutoff:g} | {t.wall:.2f} | {t.cpu:.2f} "
+            f"| {name} | {s.dt_text} | {s.tolerance:g} | {s.cutoff:g} | {t.wall:.2f} | {t.cpu:.2f} "
             f"| {t.steps / r['cost']:.0f} | {_fmt(t.cg_per_step)} | {_fmt(r['position'])} "
             f"| {_fmt(r['orientation'])} | {'yes' if r.get('pareto') else ''} "
             f"| {_fmt(r.get('numerical_position'))} | {_fmt(r.get('numerical_orientation'))} "
@@ -83,7 +84,7 @@ def brownian_table(rows):
             same = f"{worst:.1f} SE, {'yes' if ok else 'no'}"
         elif s.family == "numerical reference":
             same = "reference"
-        lines.append(f"| {name} | {s.dt:g} | {s.tolerance:g} | {s.cutoff:g} | {t.wall:.1f} "
+        lines.append(f"| {name} | {s.dt_text} | {s.tolerance:g} | {s.cutoff:g} | {t.wall:.1f} "
                      f"| {t.cpu:.1f} | {_fmt(t.cg_per_step)} | " + " | ".join(cells) + f" | {consistent} | {same} |")
     return head + "\n".join(lines) + "\n"
 
@@ -110,7 +111,7 @@ def _scatter(ax, rows, error, clock):
         ax.scatter(r["cost"], y, marker=marker, color=colour, s=70 if s.is_default else 36, zorder=3,
                    label=None if s.family in seen else s.family)
         seen.add(s.family)
-        ax.annotate(f"{s.dt:g}/{s.tolerance:g}/{s.cutoff:g}", (r["cost"], y), fontsize=6,
+        ax.annotate(f"{s.dt_text}/{s.tolerance:g}/{s.cutoff:g}", (r["cost"], y), fontsize=6,
                     xytext=(3, 3), textcoords="offset points")
         if s.is_default:
             ax.scatter(r["cost"], y, s=320, facecolors="none", edgecolors="red", lw=2, zorder=4,

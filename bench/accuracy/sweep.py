@@ -15,27 +15,35 @@ DEFAULT_CUTOFF = 2.5
 
 @dataclass(frozen=True)
 class Setting:
-    family: str  # reference, default, dt, tolerance, cutoff, combined
-    dt: float
+    family: str  # reference, default, dt, tolerance, cutoff, combined, adaptive
+    dt: float  # the step, or with step_tolerance > 0 the longest step dt_max (run.dt: auto)
     tolerance: float
     cutoff: float
+    step_tolerance: float = 0.0  # > 0: adaptive steps, run.tolerance (a)
+
+    @property
+    def dt_text(self):
+        return f"auto<={self.dt:g} eps={self.step_tolerance:g}" if self.step_tolerance else f"{self.dt:g}"
 
     @property
     def label(self):
-        return f"dt={self.dt:g} tol={self.tolerance:g} cut={self.cutoff:g}"
+        return f"dt={self.dt_text} tol={self.tolerance:g} cut={self.cutoff:g}"
 
     @property
     def key(self):
         """A file-name-safe identifier."""
-        return f"dt{self.dt:g}_tol{self.tolerance:g}_cut{self.cutoff:g}".replace("+", "")
+        auto = f"auto{self.step_tolerance:g}_" if self.step_tolerance else ""
+        return f"{auto}dt{self.dt:g}_tol{self.tolerance:g}_cut{self.cutoff:g}".replace("+", "")
 
     def overrides(self):
-        return [f"run.dt={self.dt!r}", f"hydro.tolerance={self.tolerance!r}",
-                f"hydro.cutoff={self.cutoff!r}"]
+        step = ([f"run.dt=auto", f"run.dt_max={self.dt!r}", f"run.tolerance={self.step_tolerance!r}"]
+                if self.step_tolerance else [f"run.dt={self.dt!r}"])
+        return step + [f"hydro.tolerance={self.tolerance!r}", f"hydro.cutoff={self.cutoff!r}"]
 
     @property
     def is_default(self):
-        return (self.dt, self.tolerance, self.cutoff) == (DEFAULT_DT, DEFAULT_TOLERANCE, DEFAULT_CUTOFF)
+        return (self.dt, self.tolerance, self.cutoff, self.step_tolerance) == (
+            DEFAULT_DT, DEFAULT_TOLERANCE, DEFAULT_CUTOFF, 0.0)
 
 
 @dataclass(frozen=True)
@@ -59,8 +67,10 @@ class Plan:
     brownian_start: float  # Brownian runs: observers average from this time on
 
 
-def _around_defaults(dts, tolerances, cutoffs, combined):
+def _around_defaults(dts, tolerances, cutoffs, combined, adaptive=()):
+    """adaptive: (dt_max, step tolerance) pairs, run at the default CG tolerance and cutoff."""
     out = [Setting("default", DEFAULT_DT, DEFAULT_TOLERANCE, DEFAULT_CUTOFF)]
+    out += [Setting("adaptive", dt_max, DEFAULT_TOLERANCE, DEFAULT_CUTOFF, eps) for dt_max, eps in adaptive]
     out += [Setting("dt", dt, DEFAULT_TOLERANCE, DEFAULT_CUTOFF) for dt in dts]
     out += [Setting("tolerance", DEFAULT_DT, tol, DEFAULT_CUTOFF) for tol in tolerances]
     out += [Setting("cutoff", DEFAULT_DT, DEFAULT_TOLERANCE, cut) for cut in cutoffs]
@@ -88,18 +98,19 @@ def full_plan():
         tolerances=[1e-2, 1e-3, 1e-4, 1e-5, 1e-8],
         cutoffs=[2.1, 2.2, 2.3, 2.7, 2.9],
         combined=[(4e-3, 1e-3, 2.5), (2e-3, 1e-4, 2.5), (2e-3, 1e-3, 2.7), (4e-3, 1e-4, 2.3),
-                  (1e-3, 1e-4, 2.7), (5e-4, 1e-8, 2.7)])
+                  (1e-3, 1e-4, 2.7), (5e-4, 1e-8, 2.7)],
+        adaptive=[(8e-3, 1e-5), (8e-3, 1e-6), (8e-3, 1e-7), (8e-3, 1e-8)])
     # Brownian errors are limited by sampling, not by the setting: the reference takes the smallest
     # dt of the Brownian settings (a smaller one would cost minutes and not be seen within the SE).
     brownian = _around_defaults(dts=[4e-3, 2e-3], tolerances=[1e-3], cutoffs=[2.2, 2.9],
-                                combined=[(2e-3, 1e-4, 2.5)])
+                                combined=[(2e-3, 1e-4, 2.5)], adaptive=[(8e-3, 3e-3), (8e-3, 1e-3)])
     return _plan(2.5e-4, deterministic, 1e-3, brownian, strain=1.0, brownian_duration=8.0,
                  brownian_start=1.0)
 
 
 def quick_plan():
     deterministic = _around_defaults(dts=[4e-3, 2e-3], tolerances=[1e-3, 1e-4], cutoffs=[2.2, 2.7],
-                                     combined=[(2e-3, 1e-4, 2.5)])
-    brownian = _around_defaults(dts=[4e-3], tolerances=[], cutoffs=[], combined=[])
+                                     combined=[(2e-3, 1e-4, 2.5)], adaptive=[(8e-3, 1e-6), (8e-3, 1e-7)])
+    brownian = _around_defaults(dts=[4e-3], tolerances=[], cutoffs=[], combined=[], adaptive=[(8e-3, 3e-3)])
     return _plan(2.5e-4, deterministic, 1e-3, brownian, strain=0.5, brownian_duration=4.0,
                  brownian_start=1.0)

@@ -67,7 +67,8 @@ def lammps_loop(log):
 
 def fldsim_stress(h5):
     with h5py.File(h5, "r") as f:
-        return list(f["observables/stress/eta_r/value"][()])
+        g = f["timeseries/stress/eta_r"] if "timeseries" in f else f["observables/stress/eta_r"]
+        return list(g["value"][()])
 
 
 def fldsim_log(log):

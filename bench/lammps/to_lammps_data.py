@@ -13,7 +13,7 @@ def main():
     src, dst = sys.argv[1], sys.argv[2]
     with h5py.File(src, "r") as f:
         pos = f["/particles/bodies/position/value"][-1]
-        edge = float(f["/particles/bodies/box/edges/value"][-1][0])
+        edge = float(f["/particles/bodies/box/edges/value"][-1].flat[0])  # 3x3 cell or 3 lengths
         strain = float(f["/particles/bodies/lees_edwards/strain/value"][-1])
         radius = float(f["/particles/nodes/radius"][0]) if "/particles/nodes/radius" in f else 1.0
     if strain % 1.0 != 0.0:

@@ -3,12 +3,14 @@
 #include <unistd.h>
 
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <sstream>
 #include <string>
 #include <variant>
 #include <vector>
 
+#include "fldsim/api.hpp"
 #include "fldsim/error.hpp"
 #include "fldsim/force.hpp"
 #include "fldsim/hydro.hpp"
@@ -33,8 +35,9 @@ const char* kUsage =
     "  plugins                     list every plugin found, with its parameters\n"
     "  summary RUN.h5              print the steady-state results of a run\n"
     "  oracle FILE.yaml            exact equilibrium g(r) and Z of its potential (Monte Carlo)\n"
+    "  export RUN.h5 --gsd OUT.gsd  the trajectory as GSD frames (OVITO, HOOMD tools)\n"
     "\n"
-    "`fldsim CMD --help` documents each command.\n";
+    "`fldsim CMD --help` documents each command; `fldsim --version` prints the version.\n";
 
 const char* kRunHelp =
     "usage: fldsim run FILE.yaml [options]\n"
@@ -42,7 +45,8 @@ const char* kRunHelp =
     "  -o, --output OUT.h5     result file (overrides the experiment's `output`)\n"
     "  --overwrite             replace an existing result file (refused otherwise)\n"
     "  --set KEY=VALUE         override any key by its dotted path before validation, e.g.\n"
-    "                          --set flow.peclet=10 --set system.shape.c=1 (repeatable; sweeps)\n"
+    "                          --set flow.peclet=10 --set system.shape.c=1 --set observers[1].every=50\n"
+    "                          (repeatable; sweeps; list entries also as observers.1.every)\n"
     "  --resume CHECKPOINT     continue a run exactly from OUT.h5.checkpoint\n"
     "  -q, --quiet             no log on stderr except errors\n"
     "\n"
@@ -179,6 +183,30 @@ int cmd_plugins(const std::vector<std::string>& args) {
   return 0;
 }
 
+// `export` is the Python module fldsim.gsd_export (h5py, gsd) run with Debian's interpreter; the
+// package sits in the build tree's python/ or, installed, in LIBDIR/fldsim/python.
+int cmd_export(const std::vector<std::string>& args) {
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe");
+  const std::filesystem::path build_dir = FLDSIM_PYTHON_BUILD_DIR;
+  const std::filesystem::path package_dir = std::filesystem::exists(build_dir / "fldsim" / "gsd_export.py") &&
+                                                    exe.parent_path() == FLDSIM_BIN_BUILD_DIR
+                                                ? build_dir
+                                                : exe.parent_path() / FLDSIM_PYTHON_FROM_BIN;
+  const char* old = std::getenv("PYTHONPATH");
+  const std::string path = package_dir.string() + (old && *old ? ":" + std::string(old) : std::string());
+  setenv("PYTHONPATH", path.c_str(), 1);
+  std::vector<std::string> argv_text{"python3", "-m", "fldsim.gsd_export"};
+  argv_text.insert(argv_text.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& a : argv_text) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  execv("/usr/bin/python3", argv.data());
+  execvp("python3", argv.data());  // returns only on failure
+  std::cerr
+      << "fldsim export: cannot run python3 (Debian: apt-get install python3 python3-h5py python3-gsd)\n";
+  return 1;
+}
+
 int cmd_summary(const std::vector<std::string>& args) {
   if (args.empty()) return usage_error("no result file given", kSummaryHelp);
   if (is_help(args[0])) {
@@ -215,6 +243,12 @@ int main(int argc, char** argv) {
       std::cout << kUsage;
       return 0;
     }
+    if (cmd == "--version" || cmd == "version") {
+      std::cout << "fldsim " << FLDSIM_VERSION << " (plugin API " << FLDSIM_API_MAJOR << "."
+                << FLDSIM_API_MINOR << ")\n";
+      return 0;
+    }
+    if (cmd == "export") return cmd_export(rest);
     if (cmd == "run") return cmd_run(rest, false);
     if (cmd == "check") return cmd_run(rest, true);
     if (cmd == "plugins") return cmd_plugins(rest);

@@ -82,7 +82,7 @@ TEST(ExperimentRun, BadValueIsOneLineWithFileLineKeyAndExitCode2) {
   write(d / "e.yaml", y);
   const Command c = run("check " + (d / "e.yaml").string());
   EXPECT_EQ(c.code, 2);
-  EXPECT_EQ(c.output, (d / "e.yaml").string() + ":10:11: run.dt: expected a number > 0, got -1\n");
+  EXPECT_EQ(c.output, (d / "e.yaml").string() + ":10:11: run.dt: expected a number > 0 or auto, got -1\n");
 }
 
 TEST(ExperimentRun, OverrideOfAListByNameIsAOneLineError) {
@@ -94,6 +94,21 @@ TEST(ExperimentRun, OverrideOfAListByNameIsAOneLineError) {
   const Command far = run("check " + (d / "e.yaml").string() + " --set forces.3.prefactor=1");
   EXPECT_EQ(far.code, 2);
   EXPECT_EQ(far.output, "--set forces.3.prefactor=1: index 3 out of range (the list has 1 entries)\n");
+}
+
+// The form errors print (forces[0].plugin) addresses the same entry as the dotted one.
+TEST(ExperimentRun, OverrideAcceptsTheIndexFormThatErrorsPrint) {
+  const fs::path d = scratch("override-index");
+  write(d / "e.yaml", experiment((d / "out.h5").string(), 0.02));
+  const Command bracket = run("check " + (d / "e.yaml").string() + " --set forces[0].plugin=nosuch");
+  const Command dotted = run("check " + (d / "e.yaml").string() + " --set forces.0.plugin=nosuch");
+  EXPECT_EQ(bracket.code, 2);
+  EXPECT_NE(bracket.output.find("forces[0].plugin: no force plugin named 'nosuch'"), std::string::npos)
+      << bracket.output;
+  EXPECT_EQ(bracket.output, dotted.output);
+  const Command far = run("check " + (d / "e.yaml").string() + " --set forces[3].prefactor=1");
+  EXPECT_EQ(far.output, "--set forces[3].prefactor=1: index 3 out of range (the list has 1 entries)\n");
+  EXPECT_EQ(run("check " + (d / "e.yaml").string() + " --set forces[0].prefactor=20").code, 0);
 }
 
 // A check only the plugin can make (in its constructor) is made by `check` too, not first at `run`.
@@ -150,6 +165,83 @@ TEST(ExperimentRun, ResumedRunIsBitIdenticalToUninterruptedRun) {
     EXPECT_FALSE(a.blobs.at(key).empty()) << key;
     EXPECT_EQ(a.blobs.at(key), b.blobs.at(key)) << key;
   }
+}
+
+}  // namespace
+
+namespace {
+
+// `dt: auto` keeps the counter-based reproducibility: the adaptive state (the step proposal and
+// the statistics) is in the checkpoint, and a frame's end leaves no bridged noise pending, so a
+// resumed run is bit-identical; the thread count changes nothing. Free-draining spheres with
+// the paper's repulsion: steps shrink at every contact, so there are many step lengths.
+std::string adaptive(const std::string& output, double duration, const std::string& threads) {
+  std::ostringstream y;
+  y << "system:\n"
+       "  shape: {plugin: sphere}\n"
+       "  count: 64\n"
+       "  volume_fraction: 0.3\n"
+       "  init: {method: monte_carlo, seed: 3, sweeps: 50}\n"
+       "hydro: {plugin: free_draining}\n"
+       "forces:\n"
+       "  - {plugin: repulsion}\n"
+       "run: {dt: auto, dt_max: 0.001, tolerance: 0.002, duration: "
+    << duration << ", seed: 9, threads: " << threads
+    << "}\n"
+       "observers:\n  - {plugin: pair_distribution, every: 5, range: 3}\n"
+       "output: "
+    << output << "\n";
+  return y.str();
+}
+
+TEST(ExperimentRun, AdaptiveRunResumesBitIdenticallyOnAnyThreadCount) {
+  const fs::path d = scratch("adaptive");
+  write(d / "full.yaml", adaptive((d / "full.h5").string(), 0.03, "1"));
+  write(d / "two.yaml", adaptive((d / "two.h5").string(), 0.03, "2"));
+  write(d / "half.yaml", adaptive((d / "half.h5").string(), 0.015, "1"));
+  write(d / "rest.yaml", adaptive((d / "rest.h5").string(), 0.03, "1"));
+  const Command full = run("run " + (d / "full.yaml").string());
+  ASSERT_EQ(full.code, 0) << full.output;
+  EXPECT_NE(full.output.find("steps: "), std::string::npos) << full.output;
+  ASSERT_EQ(run("run -q " + (d / "two.yaml").string()).code, 0);
+  ASSERT_EQ(run("run -q " + (d / "half.yaml").string()).code, 0);
+  const Command c =
+      run("run -q " + (d / "rest.yaml").string() + " --resume " + (d / "half.h5.checkpoint").string());
+  ASSERT_EQ(c.code, 0) << c.output;
+  const auto a = fldsim::read_checkpoint((d / "full.h5.checkpoint").string());
+  for (const std::string other : {"two", "rest"}) {
+    const auto b = fldsim::read_checkpoint((d / (other + ".h5.checkpoint")).string());
+    ASSERT_EQ(b.step, a.step) << other;
+    for (std::size_t i = 0; i < a.positions.size(); ++i) EXPECT_EQ(a.positions[i], b.positions[i]) << other;
+    for (const std::string key : {"run.steps", "observers[0].pair_distribution"}) {
+      ASSERT_TRUE(a.blobs.count(key) && b.blobs.count(key)) << key;
+      EXPECT_EQ(a.blobs.at(key), b.blobs.at(key)) << other << " " << key;
+    }
+  }
+  // The run did adapt: more steps than frames, of several lengths.
+  const auto& steps = a.blobs.at("run.steps");
+  const double accepted = steps.at(3);  // after the proposal, overlap frames, deepest overlap
+  EXPECT_GT(accepted, double(a.step)) << "no step was shorter than dt_max";
+}
+
+// A run that cannot go on stops with one line naming the time and the cause, and a checkpoint
+// at the start of the frame that failed. Here a fixed step of 0.05 a^2/D0 with free draining
+// makes overlaps far beyond max_overlap = 1e-4 a, and dt_min forbids the retries it would need.
+TEST(ExperimentRun, RunThatCannotGoOnStopsWithACheckpointAndOneLine) {
+  const fs::path d = scratch("stuck");
+  std::string text = adaptive((d / "stuck.h5").string(), 1.0, "1");
+  const std::string from = "run: {dt: auto, dt_max: 0.001, tolerance: 0.002, duration: 1";
+  text.replace(text.find(from), from.size(),
+               "run: {dt: 0.05, dt_min: 0.02, max_overlap: 1.0e-4, duration: 1");
+  write(d / "stuck.yaml", text);
+  const Command c = run("run -q " + (d / "stuck.yaml").string());
+  EXPECT_NE(c.code, 0);
+  EXPECT_NE(c.output.find("cannot go on"), std::string::npos) << c.output;
+  EXPECT_NE(c.output.find("overlap"), std::string::npos) << c.output;
+  EXPECT_NE(c.output.find("checkpoint at that time"), std::string::npos) << c.output;
+  const auto k = fldsim::read_checkpoint((d / "stuck.h5.checkpoint").string());
+  EXPECT_LT(k.step, 20);
+  EXPECT_NEAR(k.time, 0.05 * double(k.step), 1e-12);
 }
 
 }  // namespace

@@ -114,6 +114,42 @@ TEST(Hdf5ResultSink, WritesEveryCallInTheH5mdLayout) {
             (std::vector<std::string>{"periodic", "periodic", "none"}));
 }
 
+// Times in the run's unit: stored time = internal time / internal time per unit, with the unit
+// in H5MD grammar on every time dataset; the units module is declared; numbers in /parameters
+// are doubles (bit-exact, 2.5e-7 is not "0.000000"), the experiment text is kept byte for byte.
+TEST(Hdf5ResultSink, TimesInTheRunsUnitAndExactParameters) {
+  test::ScratchDir dir;
+  const std::string path = dir.file("units.h5");
+  const std::string text = "# a comment and odd spacing survive\nflow: {peclet:   2.5e-7}\n";
+  {
+    Hdf5ResultSink sink(path, false);
+    sink.set_time_unit("1/gammadot", 0.25);  // gammadot = 4 in internal units
+    sink.write_parameters("flow: {peclet: 2.5e-7}\n", {}, 1,
+                          {{"peclet", 2.5e-7}, {"time_unit", "1/gammadot"}});
+    sink.write_experiment_source(text, {"flow.peclet=2.5e-7"});
+    const double v = 1.0;
+    sink.append_sample("timeseries/x/q", 10, 0.75, {}, &v, "kT/a^3");
+    EXPECT_THROW(sink.set_time_unit("a^2/D0", 1.0), Error);  // too late: a series exists
+    sink.commit();
+  }
+  H5::H5File f(path, H5F_ACC_RDONLY);
+  H5::Group units = f.openGroup("/h5md/modules/units");
+  EXPECT_EQ(test::int_attr(units, "version"), (std::vector<long long>{1, 0}));
+  EXPECT_NE(string_attr(units, "system").find("a = node radius"), std::string::npos);
+  H5::DataSet time = f.openDataSet("/timeseries/x/q/time");
+  EXPECT_EQ(read_all(time), (std::vector<double>{3.0}));  // 0.75 / 0.25, exact in binary
+  EXPECT_EQ(string_attr(time, "unit"), "gammadot-1");
+  EXPECT_EQ(string_attr(f.openDataSet("/timeseries/x/q/value"), "unit"), "kT a-3");
+  H5::Group p = f.openGroup("/parameters");
+  EXPECT_EQ(p.openAttribute("peclet").getDataType().getClass(), H5T_FLOAT);
+  EXPECT_EQ(test::double_attr(p, "peclet"), 2.5e-7);
+  H5::DataSet source = p.openDataSet("experiment_source");
+  std::string stored;
+  source.read(stored, source.getStrType());
+  EXPECT_EQ(stored.substr(0, stored.find('\0')), text);
+  EXPECT_EQ(test::string_list_attr(source, "overrides"), (std::vector<std::string>{"flow.peclet=2.5e-7"}));
+}
+
 TEST(Hdf5ResultSink, RefusesToOverwriteAndLeavesTheFileByteIdentical) {
   test::ScratchDir dir;
   const std::string path = dir.file("old.h5");

@@ -23,6 +23,9 @@ TEST(Summary, FormatsValuesToThePrecisionOfTheirError) {
   format_with_error(-3.2e-7, 1.1e-8, v, e);
   EXPECT_EQ(v, "-3.20e-07");
   EXPECT_EQ(e, "1.1e-08");
+  format_with_error(0.5000000000000011, 6.7e-17, v, e);  // an error at round-off: 12 digits at most
+  EXPECT_EQ(v, "0.5");
+  EXPECT_EQ(e, "6.7e-17");
   format_with_error(2.0 / 3.0, 0.0, v, e);  // exact value: 6 significant digits
   EXPECT_EQ(v, "0.666667");
   EXPECT_EQ(e, "0");

@@ -1,6 +1,7 @@
-// The trajectory observer writes an H5MD particles group: box attributes, wrapped centres
-// under Lees–Edwards, scalar-first quaternions, the Lees–Edwards offset and strain, and
-// optionally node positions. Expected values are worked out by hand below.
+// The trajectory observer writes an H5MD particles group: box attributes and the 3x3 cell with
+// the Lees-Edwards tilt, wrapped centres under Lees–Edwards, scalar-first quaternions, the
+// continuous Lees–Edwards offset and the strain, the body shape, and optionally node positions.
+// Expected values are worked out by hand below.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -61,12 +62,18 @@ TEST(TrajectoryObserver, WritesH5mdParticlesGroup) {
   EXPECT_EQ(box.openAttribute("dimension").getSpace().getSimpleExtentType(), H5S_SCALAR);  // H5MD: an integer
   EXPECT_EQ(test::string_list_attr(box, "boundary"),
             (std::vector<std::string>{"periodic", "periodic", "periodic"}));
+  // Cell rows (L,0,0), (s,L,0), (0,0,L) with s = L (strain - round(strain)): 2.5 at strain 0.25,
+  // -5 at strain 1.5 (the shift 15 less one box length 10, then -5 = 5 - 10 as the smaller).
   EXPECT_EQ(read_all(f.openDataSet("/particles/bodies/box/edges/value")),
-            (std::vector<double>{10, 10, 10, 10, 10, 10}));
+            (std::vector<double>{10, 0, 0, 2.5, 10, 0, 0, 0, 10, 10, 0, 0, -5, 10, 0, 0, 0, 10}));
 
   H5::DataSet pos = f.openDataSet("/particles/bodies/position/value");
   ASSERT_EQ(dims_of(pos), (std::vector<hsize_t>{2, 3, 3}));
-  EXPECT_EQ(test::string_attr(pos, "unit"), "a");
+  // The position element's units sit on its group (MDAnalysis 2.4 refuses "a" on the datasets).
+  EXPECT_FALSE(pos.attrExists("unit"));
+  EXPECT_EQ(test::string_attr(f.openGroup("/particles/bodies/position"), "unit"), "a");
+  EXPECT_EQ(test::string_attr(f.openGroup("/particles/bodies/position"), "time_unit"), "a+2 D0-1");
+  EXPECT_EQ(test::string_attr(f.openDataSet("/particles/bodies/orientation/time"), "unit"), "a+2 D0-1");
   EXPECT_EQ(read_all(f.openDataSet("/particles/bodies/position/step")), (std::vector<double>{0, 10}));
   EXPECT_EQ(read_all(f.openDataSet("/particles/bodies/position/time")), (std::vector<double>{0, 0.01}));
   const std::vector<double> p = read_all(pos);
@@ -89,9 +96,13 @@ TEST(TrajectoryObserver, WritesH5mdParticlesGroup) {
   EXPECT_EQ(dims_of(f.openDataSet("/particles/bodies/lees_edwards/offset/value")), (std::vector<hsize_t>{2}));
   const std::vector<double> offset = read_all(f.openDataSet("/particles/bodies/lees_edwards/offset/value"));
   EXPECT_NEAR(offset[0], 2.5, kTol);
-  EXPECT_NEAR(offset[1], 5.0, kTol);
+  EXPECT_NEAR(offset[1], 15.0, kTol);  // strain 1.5 times L: continuous, not reduced mod L
   EXPECT_EQ(read_all(f.openDataSet("/particles/bodies/lees_edwards/strain/value")),
             (std::vector<double>{0.25, 1.5}));
+  // Dimer nodes at (0, 0, +/-0.5), radius 1 (TinyDimer.hpp), in the body frame.
+  EXPECT_EQ(read_all(f.openDataSet("/particles/bodies/shape/node_positions")),
+            (std::vector<double>{0, 0, 0.5, 0, 0, -0.5}));
+  EXPECT_EQ(read_all(f.openDataSet("/particles/bodies/shape/node_radii")), (std::vector<double>{1, 1}));
   EXPECT_FALSE(H5Lexists(f.getId(), "/particles/nodes", H5P_DEFAULT) > 0);
 }
 

@@ -164,7 +164,7 @@ TEST(OrientationObserver, WritesResultsThroughTheSink) {
   EXPECT_NEAR(sink.scalar("results/orientation/S_zz").value, -0.5, 1e-12);
   EXPECT_NEAR(sink.scalar("results/orientation/delta_phi_m").value, kPi / 4, 1e-12);
   EXPECT_NEAR(sink.scalar("results/orientation/delta_theta_m").value, kPi / 2 - 1.0, 1e-12);
-  EXPECT_EQ(sink.series.at("observables/orientation/theta_m").steps.size(), 4u);
+  EXPECT_EQ(sink.series.at("timeseries/orientation/theta_m").steps.size(), 4u);
   // Largest eigenvalue 1 with eigenvector +-x.
   const auto& ev = sink.arrays.at("results/orientation/order_eigenvalues").data;
   const auto& vec = sink.arrays.at("results/orientation/order_eigenvectors").data;

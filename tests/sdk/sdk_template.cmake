@@ -21,6 +21,14 @@ if(NOT EXISTS ${installed})
   message(FATAL_ERROR "the template did not install ${installed}")
 endif()
 
+# Relocatable: the installed plugin finds the core relative to itself first ($ORIGIN/../.. in
+# fldsim's layout), not only through an absolute path.
+find_program(READELF readelf)
+if(READELF)
+  execute_process(COMMAND ${READELF} -d ${installed} OUTPUT_VARIABLE dynamic)
+  sdk_expect("RUNPATH relative to the plugin" "${dynamic}" "[$ORIGIN/../..")
+endif()
+
 # Found through FLDSIM_PLUGIN_PATH, with its parameters.
 sdk_plugin_path(${plugin_prefix}/${LIBDIR}/fldsim/plugins)
 sdk_run("fldsim plugins" OUT out COMMAND ${FLDSIM} plugins)

@@ -33,7 +33,7 @@ struct ParamSpec {
   double max = std::numeric_limits<double>::infinity();
   bool min_exclusive = false;
   bool max_exclusive = false;
-  std::vector<std::string> choices;  // for Choice
+  std::vector<std::string> choices;  // for Choice; for Number: words accepted instead of a number
   std::size_t list_size = 0;         // for NumberList / rows of NumberTable: 0 = any length
 
   // Range builders, chainable: s.number(...).greater(2.0).at_most(5.0)
@@ -42,6 +42,8 @@ struct ParamSpec {
   ParamSpec& less(double v) { max = v; max_exclusive = true; return *this; }
   ParamSpec& at_most(double v) { max = v; max_exclusive = false; return *this; }
   ParamSpec& length(std::size_t n) { list_size = n; return *this; }
+  // A Number that may also be this word (e.g. `dt: auto`); Params::text then returns the word.
+  ParamSpec& or_word(std::string word) { choices.push_back(std::move(word)); return *this; }
 
   // "a number > 2", "an integer >= 1", "one of: a, b" — used in error messages and docs.
   std::string expectation() const;

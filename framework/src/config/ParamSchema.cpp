@@ -63,7 +63,7 @@ std::string ParamSpec::expectation() const {
   const std::string count = list_size ? std::to_string(list_size) + " " : "";
   switch (type) {
     case ParamType::Number:
-      return "a number" + range;
+      return "a number" + range + (choices.empty() ? "" : " or " + join(choices));
     case ParamType::Integer:
       return "an integer" + range;
     case ParamType::Flag:

@@ -119,6 +119,8 @@ class ValueReader {
   }
 
   std::optional<ParamValue> number(const ParamSpec& spec, const YAML::Node& n, const std::string& path) {
+    if (n.IsScalar() && std::find(spec.choices.begin(), spec.choices.end(), n.Scalar()) != spec.choices.end())
+      return n.Scalar();  // a word the spec accepts instead of a number (`dt: auto`)
     const auto v = as_number(n);
     if (v && in_range(spec, *v)) return *v;
     ParamSpec element = spec;

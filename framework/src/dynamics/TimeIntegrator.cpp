@@ -1,6 +1,9 @@
 #include "dynamics/TimeIntegrator.hpp"
 
 #include <algorithm>
+#include <cmath>
+
+#include "fldsim/rigid.hpp"
 
 namespace fldsim {
 namespace {
@@ -19,8 +22,62 @@ void correct_for_rotation(std::vector<double>& k, const std::vector<double>& rat
 }
 }  // namespace
 
-EulerMaruyama::EulerMaruyama(std::uint64_t seed, bool brownian, DriftScheme drift, std::size_t bodies)
-    : seed_(seed), brownian_(brownian), drift_(drift), U_(6 * bodies), dU_(6 * bodies) {}
+TimeIntegrator::TimeIntegrator(std::size_t bodies) : U_(6 * bodies, 0.0), dU_(6 * bodies, 0.0) {}
+
+bool TimeIntegrator::all_finite(const double* v, std::size_t n) {
+  for (std::size_t k = 0; k < n; ++k)
+    if (!std::isfinite(v[k])) return false;
+  return true;
+}
+
+void TimeIntegrator::begin_attempt(const System& s, VelocityEvaluator& ev, double dt) {
+  base_.save(s);
+  warm_ = ev.warm_start();  // same size every time: no allocation after the first
+  dt_ = dt;
+}
+
+void TimeIntegrator::finish_attempt(System& s, VelocityEvaluator& ev, StepAttempt& a) const {
+  a.finite = all_finite(U_.data(), U_.size()) && std::isfinite(a.error);
+  for (const Vec3& x : s.positions()) a.finite = a.finite && x.allFinite();
+  if (a.finite) a.min_gap = ev.min_gap(s);
+}
+
+double TimeIntegrator::largest_error(const System& s, const double* a, const double* b, double h) const {
+  const double radius = s.shape().bounding_radius();
+  double worst = 0.0;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    Vec6 d = Eigen::Map<const Vec6>(a + 6 * i);
+    if (b) d -= Eigen::Map<const Vec6>(b + 6 * i);
+    const Vec3 dv = d.head<3>(), dw = d.tail<3>();
+    worst = std::max(worst, dv.squaredNorm() + radius * radius * dw.squaredNorm());
+  }
+  return h * std::sqrt(worst);
+}
+
+void TimeIntegrator::accept(System& s) {
+  record_displacement(s, U_.data(), dU_.data(), dt_);
+  wrap_into_box(s);
+}
+
+void TimeIntegrator::reject(System& s, VelocityEvaluator& ev) {
+  base_.restore(s);
+  std::copy(warm_.begin(), warm_.end(), ev.warm_start().begin());
+}
+
+void TimeIntegrator::step(System& s, VelocityEvaluator& ev, double dt, bool want_virial) {
+  attempt(s, ev, NoiseInterval{std::uint64_t(s.step()), dt, 0, 0, 0}, want_virial);
+  accept(s);
+  s.set_step(s.step() + 1);
+}
+
+EulerMaruyama::EulerMaruyama(std::uint64_t seed, bool brownian, DriftScheme drift, std::size_t bodies,
+                             RejectedNoise rejected)
+    : TimeIntegrator(bodies),
+      seed_(seed),
+      brownian_(brownian),
+      drift_(drift),
+      bridge_(rejected),
+      U0_(6 * bodies) {}
 
 std::string EulerMaruyama::describe() const {
   if (!brownian_) return "Euler (no Brownian forces)";
@@ -28,65 +85,74 @@ std::string EulerMaruyama::describe() const {
                                          : "Euler-Maruyama without thermal drift (drift: none)";
 }
 
-void EulerMaruyama::step(System& s, VelocityEvaluator& ev, double dt, bool want_virial) {
-  base_.save(s);
+StepAttempt EulerMaruyama::attempt(System& s, VelocityEvaluator& ev, const NoiseInterval& interval,
+                                   bool want_virial) {
+  const double dt = interval.duration();
+  begin_attempt(s, ev, dt);
+  StepAttempt a;
   ev.prepare(s, want_virial);
-  if (brownian_)
-    ev.draw_brownian(s, RandomStream(seed_, RandomPurpose::BodyNoise, std::uint64_t(s.step())), dt);
+  if (brownian_) ev.draw_brownian(s, seed_, bridge_, interval);
   ev.solve(s, brownian_);
   const bool midpoint = brownian_ && drift_ == DriftScheme::Midpoint;
   if (midpoint) {
-    std::copy_n(ev.velocity(), U_.size(), U_.begin());
+    std::copy_n(ev.velocity(), U0_.size(), U0_.begin());
+    if (!all_finite(U0_.data(), U0_.size())) return StepAttempt{0.0, a.min_gap, false};
     at_stress_stage(StressStage::Start, s, ev, want_virial);
-    move_from(s, base_, U_.data(), 0.5 * dt);
+    move_from(s, base_, U0_.data(), 0.5 * dt);
     ev.prepare(s, false);
     ev.solve(s, true);  // same F_B: the noise is frozen over the step
   }
   std::copy_n(ev.velocity(), U_.size(), U_.begin());
   std::copy_n(ev.relative_velocity(), dU_.size(), dU_.begin());
+  if (!all_finite(U_.data(), U_.size())) return StepAttempt{0.0, a.min_gap, false};
   at_stress_stage(midpoint ? StressStage::Final : StressStage::Start, s, ev, want_virial);
   move_from(s, base_, U_.data(), dt);
-  record_displacement(s, U_.data(), dU_.data(), dt);
-  wrap_into_box(s);
-  s.set_step(s.step() + 1);
+  if (midpoint) a.error = largest_error(s, U_.data(), U0_.data(), dt);
+  finish_attempt(s, ev, a);
+  return a;
 }
 
 RungeKutta3::RungeKutta3(std::size_t bodies)
-    : k1_(6 * bodies),
+    : TimeIntegrator(bodies),
+      k1_(6 * bodies),
       k2_(6 * bodies),
       k3_(6 * bodies),
       r1_(6 * bodies),
       r2_(6 * bodies),
       r3_(6 * bodies),
-      U_(6 * bodies),
-      dU_(6 * bodies) {}
+      e_(6 * bodies) {}
 
-void RungeKutta3::step(System& s, VelocityEvaluator& ev, double dt, bool want_virial) {
+StepAttempt RungeKutta3::attempt(System& s, VelocityEvaluator& ev, const NoiseInterval& interval,
+                                 bool want_virial) {
+  const double dt = interval.duration();
   const std::size_t n6 = U_.size();
-  base_.save(s);
+  begin_attempt(s, ev, dt);
+  StepAttempt a;
   auto stage = [&](std::vector<double>& k, std::vector<double>& r) {
     ev.prepare(s, want_virial);
     ev.solve(s, false);
     std::copy_n(ev.velocity(), n6, k.begin());
     std::copy_n(ev.relative_velocity(), n6, r.begin());
+    return all_finite(k.data(), n6);
   };
-  stage(k1_, r1_);
+  if (!stage(k1_, r1_)) return StepAttempt{0.0, a.min_gap, false};
   at_stress_stage(StressStage::Start, s, ev, want_virial);
   move_from(s, base_, k1_.data(), 0.5 * dt);
-  stage(k2_, r2_);
+  if (!stage(k2_, r2_)) return StepAttempt{0.0, a.min_gap, false};
   correct_for_rotation(k2_, k1_, 0.5 * dt);
   for (std::size_t k = 0; k < n6; ++k) U_[k] = 2.0 * k2_[k] - k1_[k];
   move_from(s, base_, U_.data(), dt);
-  stage(k3_, r3_);
+  if (!stage(k3_, r3_)) return StepAttempt{0.0, a.min_gap, false};
   correct_for_rotation(k3_, U_, dt);
   for (std::size_t k = 0; k < n6; ++k) {
     U_[k] = (k1_[k] + 4.0 * k2_[k] + k3_[k]) / 6.0;
     dU_[k] = (r1_[k] + 4.0 * r2_[k] + r3_[k]) / 6.0;
+    e_[k] = (k1_[k] - 2.0 * k2_[k] + k3_[k]) / 6.0;  // third-order result minus the midpoint rule's
   }
   move_from(s, base_, U_.data(), dt);
-  record_displacement(s, U_.data(), dU_.data(), dt);
-  wrap_into_box(s);
-  s.set_step(s.step() + 1);
+  a.error = largest_error(s, e_.data(), nullptr, dt);
+  finish_attempt(s, ev, a);
+  return a;
 }
 
 }  // namespace fldsim

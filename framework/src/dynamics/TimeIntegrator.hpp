@@ -1,4 +1,6 @@
-// Time integrators for overdamped rigid bodies.
+// Time integrators for overdamped rigid bodies. A step is an *attempt* over a piece of the
+// Brownian path (NoiseInterval) that the caller then accepts or rejects (StepLoop decides, from
+// the attempt's embedded error estimate and the stability guard):
 //  - EulerMaruyama: x += U dt with Brownian forces. With a configuration-dependent resistance
 //    the Ito SDE needs the drift kT div M (M = R_FU^-1); the `midpoint` drift scheme gets it
 //    without derivatives: evaluate U at x, move half a step, re-evaluate at the midpoint with the
@@ -6,78 +8,119 @@
 //    E[U_mid] = M F + kT div M + O(dt) (Fixman 1978; Banchio & Brady, J. Chem. Phys. 118, 10323
 //    (2003); the original FLD code does the same). Under shear the half step moves every body
 //    (and so every image) with the imposed flow too, since U includes U_inf.
+//    Embedded estimate: the Euler step x + dt U(x) with the same noise is the lower-order partner,
+//    so the local error is estimated by dt |U_mid - U(x)| (an embedded Heun-Euler pair in the
+//    sense of Sammueller & Schmidt, J. Chem. Phys. 155, 134107 (2021)); no extra solve.
 //  - RungeKutta3: the paper's explicit third-order scheme for deterministic (kT = 0) runs;
 //    Kutta's tableau: k1 = f(x), k2 = f(x + dt/2 k1), k3 = f(x - dt k1 + 2 dt k2),
 //    x += dt/6 (k1 + 4 k2 + k3). Orientations take the same tableau on the rotation vector
 //    (Runge-Kutta-Munthe-Kaas: stage angular velocities corrected by -1/2 Theta x omega), so they
-//    are third-order too.
+//    are third-order too. Embedded estimate: the second-order midpoint rule x + dt k2 shares k1
+//    and k2, so the error of the lower-order result is dt/6 |k1 - 2 k2 + k3| (local O(dt^3)).
+// An estimate is per body, the local displacement error of its farthest surface point
+// (translation plus bounding radius times rotation), and the attempt reports the largest.
 #pragma once
 
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
 #include "dynamics/BodyMotion.hpp"
+#include "dynamics/BrownianBridge.hpp"
 #include "dynamics/VelocityEvaluator.hpp"
 
 namespace fldsim {
 
 enum class StressStage { Start, Final };
 
+// What one attempt found.
+struct StepAttempt {
+  double error = 0.0;  // embedded estimate: largest local error of a body surface point, a (0: none)
+  double min_gap = std::numeric_limits<double>::infinity();  // smallest node gap at the end, a
+  bool finite = true;  // velocities and positions finite (if not, the end state is meaningless)
+};
+
 class TimeIntegrator {
  public:
   virtual ~TimeIntegrator() = default;
-  // Advance s by dt; afterwards evaluator.velocity() holds the velocities used for the step.
-  virtual void step(System& s, VelocityEvaluator& ev, double dt, bool want_virial) = 0;
+  // Try one step over `interval` from the current state of s. Afterwards s holds the candidate
+  // end state (unwrapped) and step_velocity() the velocities used; call accept() or reject().
+  virtual StepAttempt attempt(System& s, VelocityEvaluator& ev, const NoiseInterval& interval,
+                              bool want_virial) = 0;
+  // Keep the candidate: displacement records, centres wrapped into the box.
+  void accept(System& s);
+  // Back to the state before the attempt, solver warm start included.
+  void reject(System& s, VelocityEvaluator& ev);
+  // One plain step of dt, numbered s.step() (the fixed-step noise), always accepted; the step
+  // counter advances. For tests and benchmarks; runs go through StepLoop.
+  void step(System& s, VelocityEvaluator& ev, double dt, bool want_virial);
+
   virtual std::string describe() const = 0;
+  // Order of the embedded estimate (its local error ~ dt^order); 0 if there is none.
+  virtual double error_order() const = 0;
   // Velocity actually used for the step (6N total / relative), for observers.
-  virtual const double* step_velocity() const = 0;
-  virtual const double* step_relative_velocity() const = 0;
-  // Called on steps with want_virial (StressSampler): Start after the solve at the start of the
-  // step, Final after the midpoint solve (Euler-Maruyama with midpoint drift only). The hook may
-  // solve again: the integrator has copied what it needs, and the hook restores the warm start.
+  const double* step_velocity() const { return U_.data(); }
+  const double* step_relative_velocity() const { return dU_.data(); }
+  // Called on attempts with want_virial (StressSampler): Start after the solve at the start of
+  // the step, Final after the midpoint solve (Euler-Maruyama with midpoint drift only). The hook
+  // may solve again: the integrator has copied what it needs, and the hook restores the warm start.
   using StageHook = std::function<void(StressStage, const System&, VelocityEvaluator&)>;
   void set_stress_stage(StageHook hook) { stress_stage_ = std::move(hook); }
 
  protected:
+  explicit TimeIntegrator(std::size_t bodies);
   void at_stress_stage(StressStage stage, const System& s, VelocityEvaluator& ev, bool want_virial) const {
     if (want_virial && stress_stage_) stress_stage_(stage, s, ev);
   }
+  // Save the start state (and warm start) of an attempt.
+  void begin_attempt(const System& s, VelocityEvaluator& ev, double dt);
+  // After the final move: finiteness, then the smallest gap (refreshing the pair list).
+  void finish_attempt(System& s, VelocityEvaluator& ev, StepAttempt& a) const;
+  // Largest over bodies of h |a - b| for a surface point (translation + radius x rotation);
+  // b = nullptr stands for zero.
+  double largest_error(const System& s, const double* a, const double* b, double h) const;
+  static bool all_finite(const double* v, std::size_t n);
+
+  BodySnapshot base_;
+  std::vector<double> U_, dU_;
+  double dt_ = 0.0;
 
  private:
   StageHook stress_stage_;
+  std::vector<double> warm_;
 };
 
 enum class DriftScheme { None, Midpoint };
 
 class EulerMaruyama : public TimeIntegrator {
  public:
-  EulerMaruyama(std::uint64_t seed, bool brownian, DriftScheme drift, std::size_t bodies);
-  void step(System& s, VelocityEvaluator& ev, double dt, bool want_virial) override;
+  EulerMaruyama(std::uint64_t seed, bool brownian, DriftScheme drift, std::size_t bodies,
+                RejectedNoise rejected = RejectedNoise::Bridge);
+  StepAttempt attempt(System& s, VelocityEvaluator& ev, const NoiseInterval& interval,
+                      bool want_virial) override;
   std::string describe() const override;
-  const double* step_velocity() const override { return U_.data(); }
-  const double* step_relative_velocity() const override { return dU_.data(); }
+  double error_order() const override { return brownian_ && drift_ == DriftScheme::Midpoint ? 1.5 : 0.0; }
 
  private:
   std::uint64_t seed_;
   bool brownian_;
   DriftScheme drift_;
-  BodySnapshot base_;
-  std::vector<double> U_, dU_;
+  BrownianBridge bridge_;
+  std::vector<double> U0_;
 };
 
 class RungeKutta3 : public TimeIntegrator {
  public:
   explicit RungeKutta3(std::size_t bodies);
-  void step(System& s, VelocityEvaluator& ev, double dt, bool want_virial) override;
+  StepAttempt attempt(System& s, VelocityEvaluator& ev, const NoiseInterval& interval,
+                      bool want_virial) override;
   std::string describe() const override { return "explicit third-order Runge-Kutta (Kutta), deterministic"; }
-  const double* step_velocity() const override { return U_.data(); }
-  const double* step_relative_velocity() const override { return dU_.data(); }
+  double error_order() const override { return 3.0; }
 
  private:
-  BodySnapshot base_;
-  std::vector<double> k1_, k2_, k3_, r1_, r2_, r3_, U_, dU_;
+  std::vector<double> k1_, k2_, k3_, r1_, r2_, r3_, e_;
 };
 
 }  // namespace fldsim

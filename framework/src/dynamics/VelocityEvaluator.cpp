@@ -14,7 +14,8 @@ VelocityEvaluator::VelocityEvaluator(std::shared_ptr<HydroModel> hydro,
       FB_(6 * bodies, 0.0),
       F_(6 * bodies, 0.0),
       dU_(6 * bodies, 0.0),
-      U_(6 * bodies, 0.0) {}
+      U_(6 * bodies, 0.0),
+      FB_term_(6 * bodies, 0.0) {}
 
 void VelocityEvaluator::prepare(System& s, bool want_virial) {
   list_.update(s);
@@ -26,6 +27,30 @@ void VelocityEvaluator::prepare(System& s, bool want_virial) {
 
 void VelocityEvaluator::draw_brownian(const System& s, const RandomStream& noise, double dt) {
   hydro_->brownian_force(s, list_.pairs(), noise, dt, FB_.data());
+}
+
+void VelocityEvaluator::draw_brownian(const System& s, std::uint64_t seed, const BrownianBridge& bridge,
+                                      const NoiseInterval& interval) {
+  const double h = interval.duration();
+  const int n = bridge.terms(interval, terms_);
+  auto stream = [&](std::uint32_t stage) {
+    return RandomStream(seed, RandomPurpose::BodyNoise, interval.base, stage);
+  };
+  if (n == 1) {  // coefficient sqrt(h): the plain draw
+    hydro_->brownian_force(s, list_.pairs(), stream(terms_[0].stage), h, FB_.data());
+    return;
+  }
+  std::fill(FB_.begin(), FB_.end(), 0.0);
+  for (int j = 0; j < n; ++j) {
+    hydro_->brownian_force(s, list_.pairs(), stream(terms_[std::size_t(j)].stage), 1.0, FB_term_.data());
+    const double c = terms_[std::size_t(j)].coefficient / h;
+    for (std::size_t k = 0; k < FB_.size(); ++k) FB_[k] += c * FB_term_[k];
+  }
+}
+
+double VelocityEvaluator::min_gap(const System& s) {
+  list_.update(s);
+  return list_.min_gap(s);
 }
 
 void VelocityEvaluator::solve(const System& s, bool with_brownian) {

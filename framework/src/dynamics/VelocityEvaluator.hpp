@@ -8,6 +8,7 @@
 #include <memory>
 #include <vector>
 
+#include "dynamics/BrownianBridge.hpp"
 #include "fldsim/force.hpp"
 #include "fldsim/hydro.hpp"
 #include "geometry/CellNeighbourList.hpp"
@@ -25,6 +26,14 @@ class VelocityEvaluator {
   void prepare(System& s, bool want_virial);
   // F_B for the prepared configuration (overwrites the stored Brownian force).
   void draw_brownian(const System& s, const RandomStream& noise, double dt);
+  // F_B = sqrt(2 kT) (A W + B W_pair) / h for the Wiener increments W of `interval` (length h),
+  // built from the hydro model's draws, which are linear in the normals:
+  //   brownian_force(stream_j, dt = 1) = sqrt(2 kT) (A xi_j + B beta_j),  W = sum_j c_j xi_j.
+  // One term (a whole base interval) is the fixed-step draw brownian_force(stream_0, h) itself.
+  void draw_brownian(const System& s, std::uint64_t seed, const BrownianBridge& bridge,
+                     const NoiseInterval& interval);
+  // Refresh the pair list at the current configuration; smallest node surface gap (a).
+  double min_gap(const System& s);
   // Solve with F_P (+ the stored F_B if with_brownian). Warm-started from the previous dU.
   void solve(const System& s, bool with_brownian);
 
@@ -45,7 +54,8 @@ class VelocityEvaluator {
   std::shared_ptr<HydroModel> hydro_;
   std::vector<std::shared_ptr<ForceLaw>> forces_;
   CellNeighbourList& list_;
-  std::vector<double> FP_, FB_, F_, dU_, U_;
+  std::vector<double> FP_, FB_, F_, dU_, U_, FB_term_;
+  BrownianBridge::Terms terms_;
   Eigen::Matrix3d virial_ = Eigen::Matrix3d::Zero();
   std::int64_t total_iterations_ = 0;
 };

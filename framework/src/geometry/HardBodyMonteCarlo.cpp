@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "fldsim/error.hpp"
+#include "fldsim/number_text.hpp"
 #include "fldsim/random.hpp"
 #include "geometry/CellNeighbourList.hpp"
 
@@ -283,8 +284,8 @@ MonteCarloReport initialise_monte_carlo(System& s, const MonteCarloOptions& opt,
   auto check_budget = [&] {
     if (mc.sweeps_done() >= opt.max_sweeps)
       throw Error("monte carlo: no valid configuration after " + std::to_string(opt.max_sweeps) +
-                  " sweeps (box edge " + std::to_string(s.box().edge()) + ", target " +
-                  std::to_string(target_edge) + ")");
+                  " sweeps (box edge " + number_text(s.box().edge()) + ", target " +
+                  number_text(target_edge) + ")");
   };
   bool reached = false;
   while (!reached) {

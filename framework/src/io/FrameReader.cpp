@@ -3,8 +3,8 @@
 #include <filesystem>
 
 #include "fldsim/error.hpp"
+#include "fldsim/trajectory_layout.hpp"
 #include "io/H5Helpers.hpp"
-#include "io/TrajectoryLayout.hpp"
 
 namespace fldsim {
 
@@ -75,7 +75,9 @@ Checkpoint read_last_frame(const std::string& result_h5) {
       c.orientations[i] = Quat(q[4 * i], q[4 * i + 1], q[4 * i + 2], q[4 * i + 3]);
 
     const std::vector<double> edges = last_sample(file, trajectory::kBoxEdges, shape);
-    if (edges.size() != 3) throw Error(result_h5 + ": box edges are not a vector of 3");
+    // The 3x3 cell matrix (first row (L, 0, 0)), or edge lengths in files written before it.
+    if (edges.size() != 3 && edges.size() != 9)
+      throw Error(result_h5 + ": box edges are neither 3 lengths nor a 3x3 cell matrix");
     c.box_edge = edges[0];
     c.strain = last_sample(file, trajectory::kStrain, shape).at(0);
     c.displacement.assign(n, Vec3::Zero());

@@ -8,7 +8,9 @@
 #include <filesystem>
 
 #include "fldsim/error.hpp"
+#include "fldsim/trajectory_layout.hpp"
 #include "io/H5Helpers.hpp"
+#include "io/H5mdUnits.hpp"
 
 #ifndef FLDSIM_VERSION
 #define FLDSIM_VERSION "unknown"
@@ -53,6 +55,15 @@ void append_rows(H5::DataSet& d, const H5::PredType& type, const void* data, int
   H5::DataSpace mem_space(rank, block);
   d.write(data, type, mem_space, file_space);
 }
+// H5MD unit attribute; a dimensionless quantity ("") has none.
+void set_unit(H5::H5Object& obj, const char* key, const std::string& unit) {
+  if (!unit.empty()) io::set_string_attribute(obj, key, io::h5md_unit(unit));
+}
+
+std::string without_leading_slash(const std::string& path) {
+  return !path.empty() && path.front() == '/' ? path.substr(1) : path;
+}
+
 // H5MD requires an author name: the login name, else the account name, else "unknown".
 std::string user_name() {
   if (const char* user = std::getenv("USER"); user && *user) return user;
@@ -83,6 +94,9 @@ Hdf5ResultSink::Hdf5ResultSink(const std::string& path, bool overwrite)
     H5::Group creator = h5md.createGroup("creator");
     io::set_string_attribute(creator, "name", "fldsim");
     io::set_string_attribute(creator, "version", FLDSIM_VERSION);
+    H5::Group units = h5md.createGroup("modules").createGroup("units");
+    io::set_int_attribute(units, "version", {1, 0});
+    io::set_string_attribute(units, "system", io::kUnitSystem);
   } catch (const H5::Exception& e) {
     io::fail(part_path_, "cannot create the result file", e);
   }
@@ -105,7 +119,8 @@ void Hdf5ResultSink::check_open(const char* what) const {
 
 void Hdf5ResultSink::write_parameters(const std::string& resolved_yaml,
                                       const std::vector<std::array<std::string, 4>>& plugins,
-                                      std::uint64_t seed, const std::map<std::string, std::string>& extra) {
+                                      std::uint64_t seed,
+                                      const std::map<std::string, ParameterValue>& extra) {
   check_open("write_parameters");
   try {
     H5::Group p = io::ensure_group(file_.openGroup("/"), "parameters");
@@ -129,10 +144,38 @@ void Hdf5ResultSink::write_parameters(const std::string& resolved_yaml,
     if (p.attrExists("seed")) p.removeAttr("seed");
     H5::Attribute a = p.createAttribute("seed", H5::PredType::NATIVE_UINT64, H5::DataSpace(H5S_SCALAR));
     a.write(H5::PredType::NATIVE_UINT64, &seed);
-    for (const auto& [key, value] : extra) io::set_string_attribute(p, key, value);
+    for (const auto& [key, value] : extra) {
+      if (const auto* number = std::get_if<double>(&value))
+        io::set_double_attribute(p, key, *number);
+      else
+        io::set_string_attribute(p, key, std::get<std::string>(value));
+    }
   } catch (const H5::Exception& e) {
     io::fail(part_path_, "cannot write /parameters", e);
   }
+}
+
+void Hdf5ResultSink::write_experiment_source(const std::string& file_text,
+                                             const std::vector<std::string>& overrides) {
+  check_open("write_experiment_source");
+  try {
+    H5::Group p = io::ensure_group(file_.openGroup("/"), "parameters");
+    io::write_string_dataset(p, "experiment_source", file_text);
+    H5::DataSet d = p.openDataSet("experiment_source");
+    io::set_string_attribute(d, "description",
+                             "the experiment file as written; `experiment` is it after overrides");
+    io::set_string_list_attribute(d, "overrides", overrides);
+  } catch (const H5::Exception& e) {
+    io::fail(part_path_, "cannot write /parameters/experiment_source", e);
+  }
+}
+
+void Hdf5ResultSink::set_time_unit(const std::string& unit, double internal_per_unit) {
+  if (!series_.empty()) throw Error(part_path_ + ": the time unit is set after time series were written");
+  if (!(internal_per_unit > 0.0))
+    throw Error(part_path_ + ": time unit " + unit + " must be a positive time");
+  time_unit_ = unit;
+  time_scale_ = internal_per_unit;
 }
 
 H5::Group Hdf5ResultSink::parent_of_new(const std::string& path, std::string& leaf) {
@@ -152,7 +195,7 @@ void Hdf5ResultSink::write_scalar(const std::string& path, double value, double 
     H5::Group g = parent_of_new(path, leaf);
     H5::DataSet d = g.createDataSet(leaf, H5::PredType::NATIVE_DOUBLE, H5::DataSpace(H5S_SCALAR));
     d.write(&value, H5::PredType::NATIVE_DOUBLE);
-    io::set_string_attribute(d, "unit", unit);
+    set_unit(d, "unit", unit);
     io::set_double_attribute(d, "stderr", stderr_value);
     io::set_string_attribute(d, "description", description);
   } catch (const H5::Exception& e) {
@@ -172,7 +215,7 @@ void Hdf5ResultSink::write_array(const std::string& path, const std::vector<std:
         dims.empty() ? H5::DataSpace(H5S_SCALAR) : H5::DataSpace(static_cast<int>(dims.size()), dims.data());
     H5::DataSet d = g.createDataSet(leaf, H5::PredType::NATIVE_DOUBLE, space);
     if (space.getSimpleExtentNpoints() > 0) d.write(data, H5::PredType::NATIVE_DOUBLE);
-    io::set_string_attribute(d, "unit", unit);
+    set_unit(d, "unit", unit);
     io::set_string_attribute(d, "description", description);
   } catch (const H5::Exception& e) {
     io::fail(part_path_, "cannot write array " + path, e);
@@ -197,7 +240,13 @@ Hdf5ResultSink::TimeSeries& Hdf5ResultSink::time_series(const std::string& path,
   ts.step = create_series(g, "step", H5::PredType::NATIVE_INT64, {});
   ts.time = create_series(g, "time", H5::PredType::NATIVE_DOUBLE, {});
   ts.value = create_series(g, "value", H5::PredType::NATIVE_DOUBLE, ts.sample_shape);
-  io::set_string_attribute(ts.value, "unit", unit);
+  if (without_leading_slash(path) == without_leading_slash(trajectory::kPosition)) {
+    set_unit(g, "unit", unit);  // MDAnalysis 2.4 (see the header)
+    set_unit(g, "time_unit", time_unit_);
+  } else {
+    set_unit(ts.value, "unit", unit);
+    set_unit(ts.time, "unit", time_unit_);
+  }
   ts.extent.assign(1 + shape.size(), 0);
   std::copy(ts.sample_shape.begin(), ts.sample_shape.end(), ts.extent.begin() + 1);
   ts.offset.assign(1 + shape.size(), 0);
@@ -217,7 +266,8 @@ void Hdf5ResultSink::append_sample(const std::string& path, std::int64_t step, d
     hsize_t count = ts.extent[0], offset = 0;
     append_rows(ts.step, H5::PredType::NATIVE_INT64, &step, 1, &count, &offset, &one);
     count = ts.extent[0];
-    append_rows(ts.time, H5::PredType::NATIVE_DOUBLE, &time, 1, &count, &offset, &one);
+    const double user_time = time / time_scale_;
+    append_rows(ts.time, H5::PredType::NATIVE_DOUBLE, &user_time, 1, &count, &offset, &one);
     append_rows(ts.value, H5::PredType::NATIVE_DOUBLE, data, static_cast<int>(ts.extent.size()),
                 ts.extent.data(), ts.offset.data(), ts.block.data());
   } catch (const H5::Exception& e) {

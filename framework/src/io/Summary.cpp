@@ -61,6 +61,13 @@ void format_with_error(double value, double stderr_value, std::string& value_tex
     stderr_text = stderr_value == 0.0 ? "0" : "n/a";
     return;
   }
+  // An error below double round-off (12 significant digits) is no guide: the value is exact as
+  // far as the run can tell (0.5000000000000011 +- 6.7e-17 prints as 0.5).
+  if (std::isfinite(value) && stderr_value <= 1e-12 * std::fabs(value)) {
+    value_text = printf_string("%.*g", 12, value);
+    stderr_text = printf_string("%.*e", 1, stderr_value);
+    return;
+  }
   // Position (power of ten) of the last printed digit: the second significant digit of the error.
   const int last = static_cast<int>(std::floor(std::log10(stderr_value))) - 1;
   const double magnitude = std::fabs(value);

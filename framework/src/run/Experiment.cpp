@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <filesystem>
+#include <fstream>
 #include <set>
 #include <sstream>
 
@@ -47,7 +48,39 @@ ParamSchema flow_schema() {
 
 ParamSchema run_schema() {
   ParamSchema s;
-  s.number("dt", std::nullopt, "time_unit", "time step").greater(0.0);
+  s.number(
+       "dt", std::nullopt, "time_unit",
+       "time step; `auto` = adaptive steps of at most dt_max, controlled by tolerance (docs/time_steps.md)")
+      .greater(0.0)
+      .or_word("auto");
+  s.number("dt_max", 0.0, "time_unit",
+           "with dt: auto, the longest step and the frame: observers' `every` and checkpoint_every count "
+           "frames of dt_max, and samples fall on multiples of it; required with dt: auto")
+      .at_least(0.0);
+  s.number("dt_min", 0.0, "time_unit",
+           "shortest step: a step that a retry would cut below it stops the run with a checkpoint; "
+           "0 = the frame (dt or dt_max) / 2^24")
+      .at_least(0.0);
+  s.number("tolerance", 1e-3, "a",
+           "with dt: auto, the largest local error of a step: the embedded estimate of the displacement "
+           "error of any body's surface point (midpoint - Euler for Brownian runs, RK3 - midpoint rule for "
+           "kT = 0)")
+      .greater(0.0);
+  s.number("reject_at", 0.0, "",
+           "with dt: auto, a step whose error estimate exceeds reject_at x tolerance is rejected and retried "
+           "shorter on the same Brownian path; the controller keeps the typical error near the tolerance. "
+           "0 = automatic: 10 for Brownian runs (rejecting at every excess biases the thermal drift of "
+           "configuration-dependent mobilities such as FLD's: docs/time_steps.md), 1 for kT = 0")
+      .at_least(0.0);
+  s.integer("refine", 0, "",
+            "take every frame in at least 2^refine steps on the frame's own Brownian path (same seed: the "
+            "same noise as the unrefined run, resolved finer): strong-convergence references")
+      .at_least(0)
+      .at_most(20);
+  s.number("max_overlap", 0.1, "a",
+           "stability guard, in every mode: a step that leaves two nodes overlapping by more than this (and "
+           "more than before it) is rejected and retried on a shorter step")
+      .greater(0.0);
   s.number("duration", std::nullopt, "time_unit", "length of the run").greater(0.0);
   s.choice("time_unit", "paper", {"paper", "diffusive", "strain"},
            "unit of dt, duration, observer start and checkpoint_every: diffusive = a^2/D0, strain = "
@@ -82,10 +115,25 @@ void apply_override(YAML::Node root, const std::string& item) {
   } catch (const YAML::Exception& e) {
     throw ConfigError("--set " + item + ": value is not valid YAML: " + e.msg);
   }
+  // Dotted keys; a list entry by index in either form errors print or the dotted one:
+  // observers[2].every=10 or observers.2.every=10.
   std::vector<std::string> keys;
   std::stringstream ss(path);
-  for (std::string k; std::getline(ss, k, '.');) keys.push_back(k);
-  // A list (observers, forces) is addressed by its index: observers.2.every=10.
+  for (std::string k; std::getline(ss, k, '.');) {
+    std::size_t open = k.find('[');
+    if (open == std::string::npos) {
+      keys.push_back(k);
+      continue;
+    }
+    if (open > 0) keys.push_back(k.substr(0, open));
+    while (open != std::string::npos) {
+      const std::size_t close = k.find(']', open);
+      if (close == std::string::npos || (close + 1 < k.size() && k[close + 1] != '['))
+        throw ConfigError("--set " + item + ": expected KEY[INDEX] in '" + k + "'");
+      keys.push_back(k.substr(open + 1, close - open - 1));
+      open = close + 1 < k.size() ? close + 1 : std::string::npos;
+    }
+  }
   auto index = [&](const std::string& key, std::size_t size) {
     const bool digits = !key.empty() && key.find_first_not_of("0123456789") == std::string::npos;
     if (!digits)
@@ -154,6 +202,11 @@ Experiment read_experiment(const std::string& file, const std::vector<std::strin
   for (const auto& item : overrides) apply_override(root, item);
   Experiment ex;
   ex.file = file;
+  ex.overrides = overrides;
+  {
+    std::ifstream in(file, std::ios::binary);
+    ex.source_text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
   {
     YAML::Emitter emit;
     emit << root;
@@ -265,7 +318,27 @@ Experiment read_experiment(const std::string& file, const std::vector<std::strin
 
   const YAML::Node run = section("run", true);
   const Params rp = validate_params(run, run_schema(), "run", errors);
-  if (rp.has("dt")) ex.dt = rp.number("dt");
+  if (rp.has("dt")) {
+    ex.dt_auto = std::holds_alternative<std::string>(rp.values().at("dt"));
+    ex.dt_max = rp.number("dt_max");
+    ex.dt_min = rp.number("dt_min");
+    ex.tolerance = rp.number("tolerance");
+    ex.max_overlap = rp.number("max_overlap");
+    ex.reject_at = rp.number("reject_at");  // 0: set below, once flow.brownian is known
+    ex.refine = int(rp.integer("refine"));
+    // The frame: observers, checkpoints and the step counter count it.
+    ex.dt = ex.dt_auto ? ex.dt_max : rp.number("dt");
+    if (ex.dt_auto && ex.dt_max == 0.0)
+      errors.add(run["dt"], "run.dt_max", "dt: auto needs dt_max (the longest step, and the sampling frame)");
+    if (!ex.dt_auto && rp.given("dt_max"))
+      errors.add(run["dt_max"], "run.dt_max", "only with dt: auto (a fixed dt is its own frame)");
+    for (const char* key : {"tolerance", "reject_at"})
+      if (!ex.dt_auto && rp.given(key))
+        errors.add(run[key], std::string("run.") + key,
+                   "only with dt: auto (a fixed step has no error control)");
+    if (ex.dt > 0.0 && ex.dt_min > ex.dt)
+      errors.add(run["dt_min"], "run.dt_min", "expected a number <= the frame (dt, or dt_max with dt: auto)");
+  }
   if (rp.has("duration")) ex.duration = rp.number("duration");
   if (rp.has("time_unit")) {
     ex.time_unit = rp.text("time_unit");
@@ -277,7 +350,17 @@ Experiment read_experiment(const std::string& file, const std::vector<std::strin
     ex.threads = rp.integer("threads");
   }
   if (ex.dt > 0 && ex.duration > 0 && ex.dt > ex.duration)
-    errors.add(run["dt"], "run.dt", "expected a time step no longer than run.duration");
+    errors.add(ex.dt_auto ? run["dt_max"] : run["dt"], ex.dt_auto ? "run.dt_max" : "run.dt",
+               "expected a time step no longer than run.duration");
+  if (ex.reject_at == 0.0) ex.reject_at = ex.brownian ? 10.0 : 1.0;
+  else if (ex.reject_at < 1.0)
+    errors.add(run["reject_at"], "run.reject_at", "expected 0 (automatic) or a number >= 1");
+  if (ex.dt_auto && ex.brownian && ex.drift == "none")
+    errors.add(run["drift"], "run.drift",
+               "dt: auto needs the midpoint stage for its error estimate; drift: none has none");
+  if (ex.dt_auto && ex.integrator == "euler_maruyama" && !ex.brownian)
+    errors.add(run["integrator"], "run.integrator",
+               "dt: auto without Brownian motion needs rk3 (Euler has no embedded error estimate)");
   if (ex.brownian && ex.integrator == "rk3")
     errors.add(run["integrator"], "run.integrator",
                "rk3 is deterministic; use euler_maruyama for a Brownian run");

@@ -26,8 +26,10 @@ struct ObserverBlock {
 };
 
 struct Experiment {
-  std::string file;           // as given
-  std::string resolved_yaml;  // after --set overrides, for /parameters
+  std::string file;                    // as given
+  std::string source_text;             // the file byte for byte, for /parameters
+  std::vector<std::string> overrides;  // --set KEY=VALUE, in order
+  std::string resolved_yaml;           // after --set overrides, for /parameters
   std::vector<std::string> plugin_paths;
 
   PluginBlock shape;
@@ -48,13 +50,16 @@ struct Experiment {
   std::vector<PluginBlock> forces;
   std::vector<ObserverBlock> observers;
 
-  double dt = 0.0, duration = 0.0;  // in time_unit
-  std::string time_unit;            // paper | diffusive | strain
+  double dt = 0.0, duration = 0.0;  // in time_unit; dt is the frame (dt_max with dt: auto)
+  bool dt_auto = false;             // run.dt: auto (adaptive steps)
+  double dt_max = 0.0, dt_min = 0.0, tolerance = 1e-3, reject_at = 10.0, max_overlap = 0.1;
+  int refine = 0;         // every frame in at least 2^refine steps
+  std::string time_unit;  // paper | diffusive | strain
   std::int64_t seed = 42;
-  std::string integrator;           // auto | euler_maruyama | rk3
-  std::string drift;                // midpoint | none
+  std::string integrator;  // auto | euler_maruyama | rk3
+  std::string drift;       // midpoint | none
   double skin = 0.3;
-  double checkpoint_every = 0.0;    // in time_unit; 0 = only at the end
+  double checkpoint_every = 0.0;  // in time_unit; 0 = only at the end
   std::int64_t threads = 0;
 
   std::string output;

@@ -14,17 +14,21 @@ void write_provenance(Hdf5ResultSink& sink, const Experiment& ex, const PluginRe
   add("hydro", ex.hydro.name);
   for (const auto& f : ex.forces) add("force", f.name);
   for (const auto& o : ex.observers) add("observer", o.plugin.name);
-  std::map<std::string, std::string> extra{
+  // Numbers as doubles (exact), not as text.
+  std::map<std::string, Hdf5ResultSink::ParameterValue> extra{
       {"time_unit", sim.settings().time_unit},
-      {"units", "lengths a (node radius), energies kT, time a^2/D0 internally"},
-      {"peclet", std::to_string(ex.peclet)},
-      {"volume_fraction", std::to_string(sim.system().physics().volume_fraction)},
+      {"units", "lengths a (node radius), energies kT; times in time_unit (internally a^2/D0)"},
+      {"peclet", ex.peclet},
+      {"volume_fraction", sim.system().physics().volume_fraction},
+      {"box_edge", sim.system().box().edge()},
+      {"dt", ex.dt},
       {"shape", ex.shape.name},
-      {"brownian", ex.brownian ? "true" : "false"},
+      {"brownian", std::string(ex.brownian ? "true" : "false")},
       {"integrator", sim.integrator().describe()},
       {"experiment_file", ex.file}};
-  if (ex.shape.params.has("c")) extra["shape_c"] = std::to_string(ex.shape.params.number("c"));
+  if (ex.shape.params.has("c")) extra["shape_c"] = ex.shape.params.number("c");
   sink.write_parameters(ex.resolved_yaml, table, std::uint64_t(ex.seed), extra);
+  sink.write_experiment_source(ex.source_text, ex.overrides);
 }
 
 }  // namespace fldsim

@@ -9,6 +9,7 @@
 #include "io/Checkpoint.hpp"
 #include "io/Hdf5ResultSink.hpp"
 #include "run/Provenance.hpp"
+#include "run/RunUnits.hpp"
 #include "run/Simulation.hpp"
 
 namespace fldsim {
@@ -29,6 +30,8 @@ int run_experiment(const Experiment& ex, const PluginRegistry& registry, const R
   if (output.empty()) throw ConfigError(ex.file + ": output: no result file named (set `output:` or use -o)");
   // Opened first: it refuses an existing file before any Monte Carlo work is spent.
   Hdf5ResultSink sink(output, opt.overwrite);
+  const UserTimeUnit unit = user_time_unit(ex, physics_of(ex));  // before begin() writes a frame
+  sink.set_time_unit(unit.name, unit.scale);
   Experiment run = ex;
   run.output = output;
   Checkpoint resume;
@@ -42,7 +45,14 @@ int run_experiment(const Experiment& ex, const PluginRegistry& registry, const R
       ex.checkpoint_every > 0 ? std::max<std::int64_t>(1, std::llround(ex.checkpoint_every / ex.dt)) : 0;
   const auto loop0 = std::chrono::steady_clock::now();
   while (!sim->finished()) {
-    sim->step();
+    try {
+      sim->step();
+    } catch (const StepFailure& e) {
+      // The step loop put the system back to the start of the failing frame: resumable there.
+      write_checkpoint(checkpoint_path, sim->capture());
+      log << "steps: " << sim->step_report() << "\n";
+      throw Error(std::string(e.what()) + "; checkpoint at that time: " + checkpoint_path);
+    }
     if (checkpoint_steps > 0 && sim->system().step() % checkpoint_steps == 0)
       write_checkpoint(checkpoint_path, sim->capture());
   }
@@ -59,6 +69,7 @@ int run_experiment(const Experiment& ex, const PluginRegistry& registry, const R
       << (done > 0 ? double(sim->cg_iterations_taken()) / double(done) : 0.0)
       << " CG iterations/step (all solves), " << rebuilds << " neighbour rebuilds); total "
       << format_time(wall_s) << "\n"
+      << "steps: " << sim->step_report() << "\n"
       << "results: " << output << "   (fldsim summary " << output << "; /usr/bin/python3 tools/plot_run.py "
       << output << ")\ncheckpoint: " << checkpoint_path << "\n";
   // Frequent rebuilds mean the nodes' Brownian steps are comparable to the skin (the affine shear

@@ -8,11 +8,14 @@
 #include <omp.h>
 #endif
 
+#include "config/NumberText.hpp"
 #include "run/RunUnits.hpp"
 #include "run/StartConfiguration.hpp"
 
 namespace fldsim {
 namespace {
+
+const char* const kStepStateKey = "run.steps";  // the step control's state in a checkpoint
 
 // The bodies' part of a checkpoint; the one place that knows which System fields a restart sets.
 void place_checkpoint_bodies(System& sys, const Checkpoint& c, const std::string& source) {
@@ -50,7 +53,7 @@ SimulationParts build_parts(const Experiment& ex, const PluginRegistry& registry
       << " nodes, volume " << v_body << " a^3), phi = " << ph.volume_fraction << ", box edge " << edge
       << " a\n"
       << "flow: "
-      << (ex.brownian ? "Pe = " + std::to_string(ex.peclet)
+      << (ex.brownian ? "Pe = " + format_number(ex.peclet)
                       : std::string("non-Brownian (kT = 0), gammadot = 1"))
       << "; times in " << unit.name << "\n";
 
@@ -90,6 +93,12 @@ SimulationSettings settings_of(const Experiment& ex, const UserTimeUnit& unit, T
   s.user_dt = ex.dt;
   s.output_path = ex.output;
   s.experiment_yaml = ex.resolved_yaml;
+  s.control.adaptive = ex.dt_auto;
+  s.control.dt_min = ex.dt_min * unit.scale;
+  s.control.tolerance = ex.tolerance;
+  s.control.reject_at = ex.reject_at;
+  s.control.refine = ex.refine;
+  s.guard.max_overlap = ex.max_overlap;
   s.threads = std::move(threads);
   return s;
 }
@@ -150,9 +159,21 @@ Simulation::Simulation(SimulationParts parts, SimulationSettings settings, Resul
         settings_.drift == "none" ? DriftScheme::None : DriftScheme::Midpoint, sys.size());
   evaluator_ = std::make_unique<VelocityEvaluator>(parts_.hydro, parts_.forces, list_, sys.size());
 
-  log_ << "hydro: " << parts_.hydro_name << "; integrator: " << integrator_->describe()
-       << "; dt = " << settings_.user_dt << " " << settings_.time_unit << ", " << settings_.total_steps
-       << " steps; pair range " << range_ << " a + skin " << settings_.skin << " a\n"
+  settings_.control.frame = settings_.dt;
+  settings_.control.order = integrator_->error_order();
+  const StepControlSettings& control = settings_.control;
+  log_ << "hydro: " << parts_.hydro_name << "; integrator: " << integrator_->describe() << "; ";
+  if (control.adaptive)
+    log_ << "dt: auto (adaptive, local error ~ " << control.tolerance
+         << " a, steps up to dt_max = " << settings_.user_dt << " " << settings_.time_unit << "), "
+         << settings_.total_steps << " frames of dt_max";
+  else
+    log_ << "dt = " << settings_.user_dt << " " << settings_.time_unit << ", " << settings_.total_steps
+         << " steps";
+  if (control.refine > 0)
+    log_ << ", each in " << (1 << control.refine) << " equal steps on its Brownian path (run.refine)";
+  log_ << "; guard: overlap > " << settings_.guard.max_overlap << " a rejects a step; pair range " << range_
+       << " a + skin " << settings_.skin << " a\n"
        << "threads: " << settings_.threads.threads << " (" << settings_.threads.reason << ")\n";
   for (const auto& w : settings_.threads.warnings) log_ << "warning: " << w << "\n";
   for (const auto& s : skipped_) log_ << "skipped: " << s << "\n";
@@ -165,11 +186,14 @@ Simulation::Simulation(SimulationParts parts, SimulationSettings settings, Resul
   info_.seed = settings_.seed;
   for (auto& o : parts_.observers) o->begin(sys, info_, sink_);
   steps_ = std::make_unique<StepLoop>(sys, *integrator_, *evaluator_, list_, parts_.observers, info_,
-                                      brownian_, !use_rk3 && settings_.drift == "midpoint");
+                                      brownian_, !use_rk3 && settings_.drift == "midpoint", settings_.control,
+                                      settings_.guard, &log_);
 }
 
 // capture() and apply() are the one place that lists the run state a restart needs: the
-// bodies, the clock and strain, the solver's warm start and each observer's accumulators.
+// bodies, the clock and strain, the solver's warm start, each observer's accumulators, and the
+// step control's state (the adaptive proposal and the step statistics; a frame's end leaves no
+// bridged noise pending).
 Checkpoint Simulation::capture() const {
   const System& sys = *system_;
   Checkpoint c;
@@ -188,6 +212,7 @@ Checkpoint Simulation::capture() const {
     std::vector<double> state = parts_.observers[i]->save_state();
     if (!state.empty()) c.blobs[parts_.observer_keys[i]] = std::move(state);
   }
+  c.blobs[kStepStateKey] = steps_->save_state();
   return c;
 }
 
@@ -205,6 +230,8 @@ void Simulation::apply(const Checkpoint& c, const std::string& source) {
            << ": its averages start afresh\n";
     }
   }
+  const auto it = c.blobs.find(kStepStateKey);
+  if (it != c.blobs.end()) steps_->restore_state(it->second);
 }
 
 void Simulation::start_stepping() {
@@ -247,6 +274,13 @@ void Simulation::finish() {
   if (finished_observers_) return;
   finished_observers_ = true;
   for (auto& o : parts_.observers) o->finish(info_, sink_);
+  steps_->statistics().write(sink_, settings_.time_scale, settings_.time_unit);
+}
+
+std::string Simulation::step_report() const {
+  return steps_->statistics().text(settings_.time_scale, settings_.time_unit) + "; " +
+         std::to_string(steps_->overlap_frames()) + " of " + std::to_string(steps_taken()) +
+         " frames ended with an overlap";
 }
 
 std::int64_t Simulation::steps_taken() const {

@@ -44,7 +44,7 @@ struct SimulationParts {
 
 // How the parts are stepped.
 struct SimulationSettings {
-  double dt = 0.0;                   // internal time units (a^2/D0)
+  double dt = 0.0;                   // the frame, internal time units (a^2/D0); dt_max with dt: auto
   std::int64_t total_steps = 0;      // the run ends at this step (resumed runs count from 0 too)
   std::string integrator = "auto";   // auto (Euler-Maruyama if Brownian, else RK3) | euler_maruyama | rk3
   std::string drift = "midpoint";    // midpoint | none
@@ -55,6 +55,10 @@ struct SimulationSettings {
   double user_dt = 0.0;              // dt in the user's unit, for the log
   std::string output_path;
   std::string experiment_yaml;  // resolved experiment, stored in checkpoints
+  // Step control (docs/time_steps.md): fixed or adaptive (dt: auto) steps inside frames of `dt`,
+  // and the stability guard. The constructor sets control.frame = dt and control.order.
+  StepControlSettings control;
+  StepGuard guard;
   ThreadPlan threads;           // already applied (omp_set_num_threads) by the caller
 };
 
@@ -80,10 +84,13 @@ class Simulation {
   bool finished() const { return system_->step() >= settings_.total_steps; }
   // Steps until finished().
   void run();
-  // Every observer writes its steady-state results (once; later calls do nothing).
+  // The step statistics, one line for the log.
+  std::string step_report() const;
+  // Every observer writes its steady-state results, and the step statistics go to the sink
+  // (once; later calls do nothing).
   void finish();
 
-  // Everything a bit-exact restart needs, and its inverse. apply() may be called at any time
+  // Everything a bit-exact restart needs, and its inverse (with the step control's state). apply() may be called at any time
   // after construction (the neighbour list follows the new positions).
   Checkpoint capture() const;
   void apply(const Checkpoint& c, const std::string& source = "the checkpoint");

@@ -2,15 +2,37 @@
 
 #include <chrono>
 #include <cmath>
+#include <ostream>
+#include <sstream>
 #include <string>
 
-#include "fldsim/error.hpp"
-
 namespace fldsim {
+namespace {
+
+StepControlSettings fixed_step(const RunInfo& info) {
+  StepControlSettings c;
+  c.frame = info.dt;
+  return c;
+}
+
+std::string number(double x) {
+  std::ostringstream s;
+  s.precision(4);
+  s << x;
+  return s.str();
+}
+
+}  // namespace
 
 StepLoop::StepLoop(System& sys, TimeIntegrator& integrator, VelocityEvaluator& evaluator,
                    const geometry::CellNeighbourList& list, std::vector<std::shared_ptr<Observer>>& observers,
                    const RunInfo& info, bool brownian, bool midpoint)
+    : StepLoop(sys, integrator, evaluator, list, observers, info, brownian, midpoint, fixed_step(info)) {}
+
+StepLoop::StepLoop(System& sys, TimeIntegrator& integrator, VelocityEvaluator& evaluator,
+                   const geometry::CellNeighbourList& list, std::vector<std::shared_ptr<Observer>>& observers,
+                   const RunInfo& info, bool brownian, bool midpoint, const StepControlSettings& control,
+                   const StepGuard& guard, std::ostream* log)
     : sys_(sys),
       integrator_(integrator),
       evaluator_(evaluator),
@@ -18,13 +40,19 @@ StepLoop::StepLoop(System& sys, TimeIntegrator& integrator, VelocityEvaluator& e
       observers_(observers),
       info_(info),
       brownian_(brownian),
-      stress_(sys.size(), brownian, midpoint) {
+      stress_(sys.size(), brownian, midpoint),
+      control_(control),
+      guard_(guard),
+      log_(log) {
+  if (control.adaptive && integrator.error_order() <= 0.0)
+    throw Error("adaptive time steps need an embedded error estimate: " + integrator.describe() +
+                " has none (use drift: midpoint for Brownian runs, rk3 for kT = 0)");
   integrator_.set_stress_stage(
       [this](StressStage stage, const System& s, VelocityEvaluator& ev) { stress_.sample(stage, s, ev); });
 }
 
 void StepLoop::step(ResultSink& sink) {
-  // Which observers sample after this step; only then is their extra work done.
+  // Which observers sample after this frame; only then is their extra work done.
   const std::int64_t next = sys_.step() + 1;
   const double next_time = sys_.time() + info_.dt;
   bool any_due = false, stress_due = false;
@@ -33,22 +61,126 @@ void StepLoop::step(ResultSink& sink) {
     any_due = any_due || due;
     stress_due = stress_due || (due && o->needs().stress);
   }
-  integrator_.step(sys_, evaluator_, info_.dt, stress_due);
+  if (!gap_known_) {
+    gap_ = evaluator_.min_gap(sys_);
+    gap_known_ = true;
+  }
+  frame_start_.save(sys_);
+  displacement_ = sys_.displacement();
+  nonaffine_ = sys_.nonaffine_displacement();
+  warm_start_ = evaluator_.warm_start();
+
+  const double tolerance = control_.settings().tolerance;
+  control_.begin_frame(std::uint64_t(sys_.step()));
+  while (!control_.frame_done()) {
+    const NoiseInterval interval = control_.next();
+    const bool ends_frame = control_.next_ends_frame();
+    StepAttempt a;
+    bool ok = false;
+    Rejection why = Rejection::Error;
+    std::string detail;
+    try {
+      a = integrator_.attempt(sys_, evaluator_, interval, stress_due && ends_frame);
+      if (!a.finite) {
+        why = Rejection::NonFinite;
+        detail = "a velocity or position is not finite";
+      } else if (a.min_gap < -guard_.max_overlap && a.min_gap < gap_) {
+        why = Rejection::Overlap;
+        detail = "nodes overlap by " + number(-a.min_gap) +
+                 " a, more than run.max_overlap = " + number(guard_.max_overlap) + " a";
+      } else if (control_.settings().adaptive && a.error > tolerance * control_.settings().reject_at) {
+        why = Rejection::Error;
+        detail = "local error " + number(a.error) + " a above " + number(control_.settings().reject_at) +
+                 " x run.tolerance = " + number(tolerance) + " a";
+      } else {
+        ok = true;
+      }
+    } catch (const Error& e) {  // the solver did not converge (or another failure of this step)
+      why = Rejection::Solver;
+      detail = e.what();
+    }
+    const double ratio = control_.settings().adaptive ? a.error / tolerance : 0.0;
+    if (ok) {
+      integrator_.accept(sys_);
+      gap_ = a.min_gap;
+      stats_.accepted(interval.duration(), a.min_gap, sys_.time());
+      control_.accept(ratio);
+      continue;
+    }
+    integrator_.reject(sys_, evaluator_);
+    stats_.rejected(why);
+    if (!control_.reject(why, ratio)) {
+      frame_start_.restore(sys_);
+      sys_.displacement() = displacement_;
+      sys_.nonaffine_displacement() = nonaffine_;
+      evaluator_.warm_start() = warm_start_;
+      gap_known_ = false;
+      throw StepFailure("t = " + number(frame_start_.time / info_.time_scale) + " " + info_.time_unit +
+                        " (step " + std::to_string(sys_.step()) + "): cannot go on: a step of " +
+                        number(interval.duration() / info_.time_scale) + " " + info_.time_unit +
+                        " was still rejected (" + detail +
+                        ") and run.dt_min = " + number(control_.settings().dt_min / info_.time_scale) + " " +
+                        info_.time_unit + " allows no shorter one");
+    }
+  }
+  sys_.set_time(next_time);
+  sys_.set_step(next);
   // On stress steps of a Brownian run the sampler solved once more; report the step's own solve.
   last_solve_ = stress_due && brownian_ ? stress_.step_solve() : evaluator_.stats();
-  const double* U = integrator_.step_velocity();
-  for (std::size_t k = 0; k < 6 * sys_.size(); ++k)
-    if (!std::isfinite(U[k]))
-      throw Error("step " + std::to_string(sys_.step()) + ": velocity of body " + std::to_string(k / 6) +
-                  " is not finite (overlap or time step too large? min gap " + std::to_string(list_.min_gap(sys_)) +
-                  " a)");
+  if (gap_ < 0.0) {
+    ++overlap_frames_;
+    if (gap_ < deepest_warned_) {
+      const NodePair* closest = nullptr;
+      double best = INFINITY;
+      for (const auto& p : list_.pairs().pairs()) {
+        const double g = p.distance - sys_.node_radius(p.node_a) - sys_.node_radius(p.node_b);
+        if (g < best) best = g, closest = &p;
+      }
+      warn_overlap(gap_, closest);
+    }
+  }
   if (!any_due) return;
   const auto t0 = std::chrono::steady_clock::now();
-  const StepView view{sys_,         evaluator_.pairs(), info_,      U, evaluator_.force(),
-                      stress_due ? &stress_.pieces() : nullptr, last_solve_, list_.min_gap(sys_)};
+  const double* U = integrator_.step_velocity();
+  const StepView view{sys_,
+                      evaluator_.pairs(),
+                      info_,
+                      U,
+                      evaluator_.force(),
+                      stress_due ? &stress_.pieces() : nullptr,
+                      last_solve_,
+                      gap_};
   for (auto& o : observers_)
     if (o->needs().every_step || o->due(sys_.step(), sys_.time())) o->sample(view, sink);
   observer_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Overlaps are reported when they are new records (so a run with many shallow contacts does not
+// flood the log); the count of frames ending with an overlap is in the final step summary.
+void StepLoop::warn_overlap(double gap, const NodePair* pair) {
+  const bool first = deepest_warned_ == 0.0;
+  deepest_warned_ = gap;
+  if (!log_) return;
+  *log_ << "warning: t = " << number(sys_.time() / info_.time_scale) << " " << info_.time_unit
+        << ": overlap: ";
+  if (pair) *log_ << "bodies " << pair->body_i << " and " << pair->body_j << " ";
+  *log_ << "overlap by " << number(-gap) << " a"
+        << (first ? " (further overlaps are reported when deeper)" : "") << "\n";
+}
+
+std::vector<double> StepLoop::save_state() const {
+  std::vector<double> v{control_.proposal(), double(overlap_frames_), deepest_warned_};
+  const std::vector<double> s = stats_.save();
+  v.insert(v.end(), s.begin(), s.end());
+  return v;
+}
+
+void StepLoop::restore_state(const std::vector<double>& state) {
+  if (state.size() < 3) throw Error("step state in the checkpoint is too short");
+  control_.restore(state[0]);
+  overlap_frames_ = std::int64_t(state[1]);
+  deepest_warned_ = state[2];
+  stats_.restore(std::vector<double>(state.begin() + 3, state.end()));
 }
 
 }  // namespace fldsim

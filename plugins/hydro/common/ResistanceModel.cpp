@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "fldsim/error.hpp"
+#include "fldsim/number_text.hpp"
 
 namespace fldsim::hydro {
 
@@ -129,7 +130,7 @@ std::vector<std::string> ResistanceModel::configure(const System& system, const 
                                  : isotropic_factors(settings_.fit, system.physics().volume_fraction);
   if (f.translation <= 0.0 || f.rotation <= 0.0)
     throw Error("hydro: the R_0(phi) fit (calibrated for phi <= 0.5) is not positive at phi = " +
-                std::to_string(system.physics().volume_fraction));
+                number_text(system.physics().volume_fraction));
   iso_ = IsotropicResistance(settings_.isotropic, f);
   iso_.configure(system);
   lub_ = BodyResistance(settings_.lub);

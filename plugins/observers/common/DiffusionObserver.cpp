@@ -6,6 +6,7 @@
 
 #include "ObserverOutput.hpp"
 #include "fldsim/error.hpp"
+#include "fldsim/number_text.hpp"
 
 namespace fldsim::observers {
 
@@ -35,7 +36,7 @@ void DiffusionObserver::sample(const StepView& view, ResultSink& out) {
   for (const Vec3& d : s.nonaffine_displacement())
     for (int a = 0; a < 3; ++a) msd[a] += d[a] * d[a];
   for (double& m : msd) m /= static_cast<double>(std::max<std::size_t>(1, s.size()));
-  out.append_sample("observables/diffusion/msd_nonaffine_since_start", s.step(), s.time(), {3}, msd, "a^2");
+  out.append_sample("timeseries/diffusion/msd_nonaffine_since_start", s.step(), s.time(), {3}, msd, "a^2");
 }
 
 void DiffusionObserver::finish(const RunInfo&, ResultSink& out) {
@@ -65,7 +66,7 @@ void DiffusionObserver::finish(const RunInfo&, ResultSink& out) {
   write_vector(out, r + "lag_time", t, time_unit_, "lag times, in the run's time unit (" + time_unit_ + ")");
   out.write_attribute("results/diffusion", "time_unit", time_unit_);
   out.write_attribute("results/diffusion", "time_scale",
-                      std::to_string(time_scale_) + " a^2/D0 per " + time_unit_);
+                      number_text(time_scale_) + " a^2/D0 per " + time_unit_);
   out.write_array(r + "msd_nonaffine", {L, 3}, na.data(), "a^2", "shear-corrected MSD per axis (x, y, z)");
   out.write_array(r + "msd_nonaffine_stderr", {L, 3}, na_e.data(), "a^2", "SE by blocking over origins");
   out.write_array(r + "msd_total", {L, 3}, tot.data(), "a^2", "MSD of the total displacement per axis");

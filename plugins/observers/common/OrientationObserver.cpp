@@ -32,10 +32,10 @@ void OrientationObserver::sample(const StepView& view, ResultSink& out) {
   stats_.add_sample(directors_);
   const double t = s.time();
   const double theta_m = stats_.last_theta_m(), phi_m = stats_.last_phi_m();
-  out.append_sample("observables/orientation/theta_m", s.step(), t, {}, &theta_m, "rad");
-  out.append_sample("observables/orientation/phi_m", s.step(), t, {}, &phi_m, "rad");
+  out.append_sample("timeseries/orientation/theta_m", s.step(), t, {}, &theta_m, "rad");
+  out.append_sample("timeseries/orientation/phi_m", s.step(), t, {}, &phi_m, "rad");
   // Eigen is column-major; Q is symmetric so the row-major layout is the same.
-  out.append_sample("observables/orientation/order_tensor", s.step(), t, {3, 3}, stats_.last_q().data(), "1");
+  out.append_sample("timeseries/orientation/order_tensor", s.step(), t, {3, 3}, stats_.last_q().data(), "1");
 }
 
 void OrientationObserver::finish(const RunInfo& run, ResultSink& out) {

@@ -4,6 +4,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "fldsim/number_text.hpp"
+
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -46,9 +48,9 @@ PairDistribution::PairDistribution(PairDistributionConfig config)
 
 void PairDistribution::check_box(const LeesEdwardsBox& box) const {
   if (config_.range > 0.5 * box.edge() + 1e-12 || config_.slab_half > 0.5 * box.edge() + 1e-12)
-    throw std::invalid_argument("pair_distribution: range " + std::to_string(config_.range) + " and slab " +
-                                std::to_string(config_.slab_half) + " must not exceed half the box edge " +
-                                std::to_string(0.5 * box.edge()));
+    throw std::invalid_argument("pair_distribution: range " + number_text(config_.range) + " and slab " +
+                                number_text(config_.slab_half) + " must not exceed half the box edge " +
+                                number_text(0.5 * box.edge()));
 }
 
 void PairDistribution::add_sample(const std::vector<Vec3>& positions, const LeesEdwardsBox& box) {

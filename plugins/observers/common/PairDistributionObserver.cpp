@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "ObserverOutput.hpp"
+#include "fldsim/number_text.hpp"
 
 namespace fldsim::observers {
 
@@ -16,7 +17,7 @@ void PairDistributionObserver::sample(const StepView& view, ResultSink& out) {
   // Time series of the contact-region value would need a choice of region; the maps are
   // steady-state averages, so only the sample count is recorded as it grows.
   const double n = static_cast<double>(pd_.samples());
-  out.append_sample("observables/pair_distribution/samples", view.system.step(), view.system.time(), {}, &n,
+  out.append_sample("timeseries/pair_distribution/samples", view.system.step(), view.system.time(), {}, &n,
                     "1");
 }
 
@@ -46,7 +47,7 @@ void PairDistributionObserver::finish(const RunInfo&, ResultSink& out) {
     out.write_array(r + "g_" + name, shape, g.data(), "1", what);
     out.write_array(r + "g_" + name + "_stderr", shape, e.data(), "1", "Poisson SE of g_" + name);
   }
-  out.write_attribute("results/pair_distribution", "slab_half", std::to_string(pd_.config().slab_half));
+  out.write_attribute("results/pair_distribution", "slab_half", number_text(pd_.config().slab_half));
   out.write_attribute("results/pair_distribution", "samples", std::to_string(pd_.samples()));
 }
 

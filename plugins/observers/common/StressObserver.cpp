@@ -12,6 +12,7 @@ void StressObserver::begin(const System& system, const RunInfo& run, ResultSink&
   viscosity_ = system.physics().viscosity;
   shear_rate_ = system.physics().shear_rate;
   kT_ = system.physics().kT;
+  bodies_ = system.size();
   const std::size_t expected =
       static_cast<std::size_t>(run.total_steps / std::max<std::int64_t>(1, every()) + 1);
   for (auto& part : series_)
@@ -38,10 +39,10 @@ void StressObserver::sample(const StepView& view, ResultSink& out) {
   const auto step = view.system.step();
   const double t = view.system.time();
   const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> row_major = parts[kParticleTotal];
-  out.append_sample("observables/stress/particle_stress", step, t, {3, 3}, row_major.data(), stress_unit());
+  out.append_sample("timeseries/stress/particle_stress", step, t, {3, 3}, row_major.data(), stress_unit());
   if (shear_rate_ != 0.0) {
     const double eta = bulk.relative_viscosity(*view.stress);
-    out.append_sample("observables/stress/eta_r", step, t, {}, &eta, "1");
+    out.append_sample("timeseries/stress/eta_r", step, t, {}, &eta, "1");
   }
 }
 
@@ -92,9 +93,16 @@ void StressObserver::finish(const RunInfo&, ResultSink& out) {
         // Scaled by mu gammadot. The shear stress so scaled is a viscosity ratio (dimensionless:
         // eta_r adds the solvent's 1, eta_<part> is that part's share); N1, N2 and Pi stay
         // stresses, expressed in the stress unit mu*gammadot.
-        const double shift = (q == 0 && p == kParticleTotal) ? 1.0 : 0.0;
-        const std::string name = (q == 0 && p == kParticleTotal) ? "eta_r" : names[q] + suffix;
-        write_blocked(out, r + name, series_[p][q], q == 0 ? "1" : "mu*gammadot", what[q] + part,
+        const bool relative_viscosity = q == 0 && p == kParticleTotal;
+        const double shift = relative_viscosity ? 1.0 : 0.0;
+        const std::string name = relative_viscosity ? "eta_r" : names[q] + suffix;
+        const std::string description =
+            relative_viscosity ? "relative viscosity eta/mu = 1 + sigma_xy/(mu gammadot): solvent 1 plus the "
+                                 "particle shear stress"
+            : q == 0 ? std::string("share of eta_r - 1 from the") + part.substr(1, part.size() - 2) +
+                           " shear stress: sigma_xy/(mu gammadot)"
+                     : what[q] + part;
+        write_blocked(out, r + name, series_[p][q], q == 0 ? "1" : "mu*gammadot", description,
                       1.0 / (viscosity_ * shear_rate_), shift);
       }
       if (kT_ > 0.0) {
@@ -109,6 +117,15 @@ void StressObserver::finish(const RunInfo&, ResultSink& out) {
         write_blocked(out, r + names[q] + suffix, series_[p][q], stress_unit(), what[q] + part);
       }
     }
+  }
+  if (kT_ > 0.0) {
+    // Z = 1 + Pi_P/(n kT): the interparticle pressure is the molecular virial (force.hpp), so at
+    // Pe = 0 this is the osmotic compressibility factor of rigid bodies of any shape (BulkStress.hpp).
+    const double n = double(bodies_) / volume_;
+    write_blocked(out, r + "Z", series_[kInterparticle][3], "1",
+                  "compressibility factor Z = 1 + Pi_interparticle/(n kT) (molecular virial; the osmotic "
+                  "equation of state at Pe = 0)",
+                  1.0 / (n * kT_), 1.0);
   }
 }
 

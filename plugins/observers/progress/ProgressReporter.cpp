@@ -47,10 +47,16 @@ void ProgressReporter::update(std::int64_t step, double time, double min_gap, in
   char text[256];
   if (!gap_warned_ && min_gap < options_.min_gap_warning) {
     gap_warned_ = true;
-    std::snprintf(
-        text, sizeof text,
-        "minimum gap %.3g a < %.3g a at step %lld: bodies nearly touch; reduce dt or check the repulsion",
-        min_gap, options_.min_gap_warning, static_cast<long long>(step));
+    if (min_gap < 0.0)
+      std::snprintf(text, sizeof text,
+                    "minimum gap %.3g a at step %lld: bodies overlap by %.3g a; check the repulsion, or "
+                    "lower run.max_overlap (the step guard) or the time step",
+                    min_gap, static_cast<long long>(step), -min_gap);
+    else
+      std::snprintf(text, sizeof text,
+                    "minimum gap %.3g a < %.3g a at step %lld: bodies nearly touch; reduce dt or check the "
+                    "repulsion",
+                    min_gap, options_.min_gap_warning, static_cast<long long>(step));
     warn(text);
   }
   if (!cg_warned_ && cg_iterations > options_.cg_iterations_warning) {

@@ -1,6 +1,8 @@
 #include "TrajectoryObserver.hpp"
 
-#include "io/TrajectoryLayout.hpp"
+#include <cmath>
+
+#include "fldsim/trajectory_layout.hpp"
 
 namespace fldsim {
 
@@ -34,9 +36,24 @@ void TrajectoryObserver::begin(const System& system, const RunInfo& run, ResultS
   out.write_attribute(trajectory::kOrientation, "convention",
                       "unit quaternion, scalar first (w, x, y, z), body frame to lab frame; "
                       "H5MD draft proposal 104 (particles quaternion), not part of H5MD 1.1");
-  out.write_attribute(trajectory::kOffset, "description",
-                      "x shift of the periodic image above (y + L), in [0, L): strain mod 1 times L");
-  out.write_attribute(trajectory::kStrain, "description", "accumulated shear strain gammadot t");
+  out.write_attribute(trajectory::kBoxEdges, "description",
+                      "rows: cell vectors (L,0,0), (s,L,0), (0,0,L); s = Lees-Edwards shift of the image "
+                      "above, reduced to [-L/2, L/2)");
+  out.write_attribute(
+      trajectory::kOffset, "description",
+      "x shift of the periodic image above (y + L): strain * L, continuous (not reduced mod L)");
+  out.write_attribute(trajectory::kStrain, "description", "accumulated shear strain gammadot t (unwrapped)");
+  {
+    const auto& nodes = system.shape().nodes();
+    std::vector<double> centres, radii;
+    for (const auto& node : nodes) {
+      centres.insert(centres.end(), {node.position.x(), node.position.y(), node.position.z()});
+      radii.push_back(node.radius);
+    }
+    out.write_array(trajectory::kShapeNodes, {nodes.size(), 3}, centres.data(), "a",
+                    "sphere node centres in the body frame (rotate by orientation, add position)");
+    out.write_array(trajectory::kShapeRadii, {nodes.size()}, radii.data(), "a", "sphere node radii");
+  }
   if (options_.nodes) {
     const std::size_t m = system.nodes_per_body();
     node_position_.assign(3 * n * m, 0.0);
@@ -71,10 +88,14 @@ void TrajectoryObserver::write_frame(const System& system, ResultSink& out) {
   }
   const std::int64_t step = system.step();
   const double time = system.time();
-  const double edges[3] = {box.edge(), box.edge(), box.edge()};
-  const double offset = box.offset();
+  // Lees-Edwards as a triclinic cell: the image above is shifted by s = strain * L; any shift
+  // that differs by a multiple of L describes the same images, and the smallest is clearest.
+  const double L = box.edge();
+  const double offset = box.strain() * L;
+  const double tilt = L * (box.strain() - std::floor(box.strain() + 0.5));
+  const double cell[9] = {L, 0.0, 0.0, tilt, L, 0.0, 0.0, 0.0, L};
   const double strain = box.strain();
-  out.append_sample(trajectory::kBoxEdges, step, time, edge_shape_, edges, "a");
+  out.append_sample(trajectory::kBoxEdges, step, time, edge_shape_, cell, "a");
   out.append_sample(trajectory::kPosition, step, time, position_shape_, position_.data(), "a");
   out.append_sample(trajectory::kOrientation, step, time, orientation_shape_, orientation_.data(), "");
   out.append_sample(trajectory::kOffset, step, time, scalar_shape_, &offset, "a");
@@ -87,7 +108,7 @@ void TrajectoryObserver::write_frame(const System& system, ResultSink& out) {
       for (std::size_t k = 0; k < m; ++k)
         for (int d = 0; d < 3; ++d)
           node_position_[3 * (i * m + k) + d] = position_[3 * i + d] + off[i * m + k][d];
-    out.append_sample(kNodesBoxEdges, step, time, edge_shape_, edges, "a");
+    out.append_sample(kNodesBoxEdges, step, time, edge_shape_, cell, "a");
     out.append_sample(kNodesPosition, step, time, node_shape_, node_position_.data(), "a");
   }
   last_step_ = step;

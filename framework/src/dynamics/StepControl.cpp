@@ -1,0 +1,108 @@
+#include "dynamics/StepControl.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+
+#include "fldsim/error.hpp"
+
+namespace fldsim {
+
+const char* to_string(Rejection r) {
+  switch (r) {
+    case Rejection::Error:
+      return "error";
+    case Rejection::Overlap:
+      return "overlap";
+    case Rejection::NonFinite:
+      return "non_finite";
+    case Rejection::Solver:
+      return "solver";
+  }
+  return "unknown";
+}
+
+StepControl::StepControl(const StepControlSettings& settings) : settings_(settings) {
+  if (!(settings_.frame > 0.0)) throw Error("step control: the frame (time step) must be > 0");
+  if (settings_.refine < 0 || settings_.refine > NoiseInterval::kMaxDepth)
+    throw Error("step control: refine must be in 0.." + std::to_string(NoiseInterval::kMaxDepth));
+  if (settings_.dt_min <= 0.0) settings_.dt_min = std::ldexp(settings_.frame, -24);
+  settings_.dt_min = std::min(settings_.dt_min, std::ldexp(settings_.frame, -settings_.refine));
+  h_ = settings_.frame;
+  if (settings_.adaptive) h_ = settings_.first_step > 0.0 ? settings_.first_step : settings_.frame / 16.0;
+  h_ = std::clamp(h_, settings_.dt_min, settings_.frame);
+}
+
+void StepControl::restore(double proposal) {
+  if (settings_.adaptive) h_ = std::clamp(proposal, settings_.dt_min, settings_.frame);
+}
+
+void StepControl::begin_frame(std::uint64_t frame_index) {
+  done_ = false;
+  position_ = 0;
+  interval_ = NoiseInterval{frame_index, settings_.frame, 0, 0, 0};
+  settle_depth(0, false);
+}
+
+double StepControl::factor(double error_ratio) const {
+  if (!(error_ratio > 0.0)) return settings_.grow_max;
+  if (!std::isfinite(error_ratio)) return settings_.shrink_min;
+  return std::clamp(settings_.safety * std::pow(error_ratio, -1.0 / settings_.order), settings_.shrink_min,
+                    settings_.grow_max);
+}
+
+// Depth of the next piece: the dyadic length nearest the proposal h (geometrically; after a
+// rejection the next shorter one), never coarser than the position allows (a piece starts at a
+// multiple of its length), at least `minimum_depth` and run.refine, and not below dt_min unless
+// forced by the position or the minimum. Nearest rather than shorter: the error then scatters
+// around the tolerance instead of below it (x 2^(+-order/2)), and reject_at leaves room for it.
+void StepControl::settle_depth(int minimum_depth, bool shorter) {
+  const double H = settings_.frame;
+  int want = 0;
+  if (h_ < H) {
+    const double levels = std::log2(H / h_);
+    want = shorter ? int(std::ceil(levels - 1e-9)) : int(std::lround(levels));
+  }
+  const int aligned =
+      position_ == 0 ? 0 : NoiseInterval::kMaxDepth - std::countr_zero(position_);  // coarsest boundary
+  const int floor = std::max({aligned, minimum_depth, settings_.refine});
+  int depth = std::min(std::max(want, floor), NoiseInterval::kMaxDepth);
+  while (depth > floor && std::ldexp(H, -depth) < settings_.dt_min * (1.0 - 1e-9)) --depth;
+  interval_.depth = depth;
+  interval_.index = position_ >> (NoiseInterval::kMaxDepth - depth);
+}
+
+void StepControl::accept(double error_ratio) {
+  const double taken = interval_.duration();
+  if (settings_.adaptive) {
+    const double f = factor(error_ratio);
+    double h = taken * f;
+    // A piece cut short by the dyadic grid or the frame does not lower a good proposal.
+    if (taken < h_ && f >= 1.0) h = std::max(h, h_);
+    h_ = std::clamp(h, settings_.dt_min, settings_.frame);
+  }
+  position_ += kWhole >> interval_.depth;
+  interval_.attempt++;
+  if (position_ == kWhole) {
+    done_ = true;
+    return;
+  }
+  settle_depth(0, false);
+}
+
+bool StepControl::reject(Rejection why, double error_ratio) {
+  const double tried = interval_.duration();
+  if (settings_.adaptive) {
+    const double f = why == Rejection::Error ? std::min(factor(error_ratio), 0.5) : 0.5;
+    h_ = std::max(tried * f, settings_.dt_min);
+  }
+  const int depth = interval_.depth + 1;
+  if (depth > NoiseInterval::kMaxDepth ||
+      std::ldexp(settings_.frame, -depth) < settings_.dt_min * (1.0 - 1e-9))
+    return false;
+  interval_.attempt++;
+  settle_depth(depth, true);
+  return true;
+}
+
+}  // namespace fldsim

@@ -1,0 +1,53 @@
+// What the steps of a run were: accepted steps, rejected attempts by cause, the distribution of
+// the accepted step lengths (log-spaced histogram), and the smallest node gap seen at the end of
+// an accepted step. Kept across --resume (save/restore), written to the log, to /results/steps
+// in the result file and so to `fldsim summary`.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "dynamics/StepControl.hpp"
+#include "fldsim/results.hpp"
+
+namespace fldsim {
+
+class StepStatistics {
+ public:
+  static constexpr int kBinsPerDecade = 8;
+  static constexpr int kLowestDecade = -14;  // internal time units
+  static constexpr int kBins = 16 * kBinsPerDecade;
+
+  void accepted(double dt, double min_gap, double time_at_end);
+  void rejected(Rejection why) { ++rejected_[std::size_t(why)]; }
+
+  std::int64_t accepted_steps() const { return accepted_; }
+  std::int64_t rejected_attempts(Rejection why) const { return rejected_[std::size_t(why)]; }
+  std::int64_t rejected_attempts() const;
+  double smallest_gap() const { return min_gap_; }
+  double smallest_gap_time() const { return min_gap_time_; }
+  double mean_dt() const { return accepted_ ? sum_dt_ / double(accepted_) : 0.0; }
+  double min_dt() const { return min_dt_; }
+  double max_dt() const { return max_dt_; }
+  // q-quantile of the accepted step lengths, from the histogram (bin centre, geometric).
+  double dt_quantile(double q) const;
+
+  // One line for the log; times divided by time_scale and shown in `unit`.
+  std::string text(double time_scale, const std::string& unit) const;
+  // /results/steps/...: counts, dt statistics (in the run's time unit) and the smallest gap.
+  void write(ResultSink& sink, double time_scale, const std::string& unit) const;
+
+  std::vector<double> save() const;
+  void restore(const std::vector<double>& state);  // throws fldsim::Error on a wrong size
+
+ private:
+  std::int64_t accepted_ = 0;
+  std::array<std::int64_t, kRejectionKinds> rejected_{};
+  std::array<std::int64_t, kBins> histogram_{};
+  double sum_dt_ = 0.0, min_dt_ = 0.0, max_dt_ = 0.0;
+  double min_gap_ = 1e300, min_gap_time_ = 0.0;
+};
+
+}  // namespace fldsim

@@ -1,0 +1,278 @@
+// Step control and rejection without bias.
+//  - StepControl: the pieces it hands out tile each frame exactly; a fixed-step frame is one piece
+//    numbered like the frame; a guard rejection halves the piece for that frame only; adaptive
+//    proposals follow the error ratio; a retry below dt_min reports that the run cannot go on.
+//  - Trapped bodies: one body in a harmonic trap (U = k r^2 / 2, kT = 1) has the exact
+//    stationary variance <r^2> = kT/k per coordinate, whatever its mobility. At `dt: auto` the
+//    run must keep it within 3 SE (20 independent batch means; one comparison per run, no
+//    multiple-comparison correction needed). The midpoint scheme's own bias is O(dt^2) here
+//    (1 - dt^2/4 for constant mobility at fixed dt: below 3e-4 at these steps), far below the SE.
+//    Broken variants must fail the same comparison: redraw-on-reject (a rejected step's noise
+//    thrown away), and, with a configuration-dependent mobility, rejection at every step whose
+//    error exceeds the tolerance (the Gaines-Lyons bias, StepControl.hpp).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numeric>
+#include <vector>
+
+#include "Scene.hpp"
+#include "observers/FakeSink.hpp"
+#include "run/StepLoop.hpp"
+
+namespace fldsim::testing {
+namespace {
+
+// ---------------------------------------------------------------- StepControl
+
+double tile(StepControl& c, std::uint64_t frame, std::vector<NoiseInterval>* pieces = nullptr) {
+  c.begin_frame(frame);
+  double covered = 0.0;
+  int guard = 0;
+  while (!c.frame_done() && ++guard < 100000) {
+    covered += c.next_duration();
+    if (pieces) pieces->push_back(c.next());
+    c.accept(0.5);
+  }
+  return covered;
+}
+
+TEST(StepControl, FixedStepIsOnePieceNumberedLikeTheFrame) {
+  StepControlSettings s;
+  s.frame = 1e-3;
+  StepControl c(s);
+  c.begin_frame(41);
+  EXPECT_EQ(c.next().base, 41u);
+  EXPECT_EQ(c.next().depth, 0);
+  EXPECT_EQ(c.next_duration(), 1e-3);
+  EXPECT_TRUE(c.next_ends_frame());
+  c.accept(0.0);
+  EXPECT_TRUE(c.frame_done());
+}
+
+TEST(StepControl, GuardRejectionShrinksThatStepOnly) {
+  StepControlSettings s;
+  s.frame = 1.0;
+  StepControl c(s);
+  c.begin_frame(7);
+  ASSERT_TRUE(c.reject(Rejection::Overlap, 0.0));  // [0, 1) -> [0, 1/2)
+  ASSERT_TRUE(c.reject(Rejection::Overlap, 0.0));  // -> [0, 1/4)
+  std::vector<std::pair<int, std::uint64_t>> seen;
+  while (!c.frame_done()) {
+    seen.emplace_back(c.next().depth, c.next().index);
+    EXPECT_EQ(c.next().base, 7u);
+    c.accept(0.0);
+  }
+  // [0, 1/4) [1/4, 1/2) then back up to [1/2, 1).
+  const std::vector<std::pair<int, std::uint64_t>> expected{{2, 0}, {2, 1}, {1, 1}};
+  EXPECT_EQ(seen, expected);
+  c.begin_frame(8);
+  EXPECT_EQ(c.next().depth, 0);  // the next frame is a whole step again
+}
+
+TEST(StepControl, RetryBelowDtMinCannotGoOn) {
+  StepControlSettings s;
+  s.frame = 1.0;
+  s.dt_min = 0.2;
+  StepControl c(s);
+  c.begin_frame(0);
+  EXPECT_TRUE(c.reject(Rejection::NonFinite, 0.0));   // 1/2
+  EXPECT_TRUE(c.reject(Rejection::NonFinite, 0.0));   // 1/4
+  EXPECT_FALSE(c.reject(Rejection::NonFinite, 0.0));  // 1/8 < 0.2
+}
+
+TEST(StepControl, AdaptivePiecesTileEveryFrameAndFollowTheError) {
+  StepControlSettings s;
+  s.adaptive = true;
+  s.frame = 1.0;
+  s.first_step = 0.3;  // the nearest dyadic piece: 1/4
+  StepControl c(s);
+  c.begin_frame(0);
+  EXPECT_EQ(c.next().depth, 2);
+  for (std::uint64_t f = 0; f < 5; ++f) EXPECT_NEAR(tile(c, f), 1.0, 1e-12);
+  // Error ratio 0.5 grows the step by 0.9 * 0.5^(-1/1.5) = 1.43 per step, up to the frame.
+  EXPECT_DOUBLE_EQ(c.proposal(), 1.0);
+  // A rejection with error ratio 8 shrinks to at most 0.9 * 8^(-2/3) = 0.225 of the step,
+  // rounded down to a dyadic piece of the same frame (the same base interval: the noise is kept).
+  c.begin_frame(5);
+  ASSERT_EQ(c.next().depth, 0);
+  ASSERT_TRUE(c.reject(Rejection::Error, 8.0));
+  EXPECT_EQ(c.next().base, 5u);
+  EXPECT_EQ(c.next().depth, 3);
+  EXPECT_NEAR(c.proposal(), 0.225, 1e-12);
+  // Accepted with ratio 1: the proposal becomes 0.9 * 0.125 and the nearest piece is 1/8.
+  double covered = c.next_duration();
+  c.accept(1.0);
+  EXPECT_EQ(c.next().depth, 3);
+  EXPECT_EQ(c.next().index, 1u);
+  while (!c.frame_done()) {
+    covered += c.next_duration();
+    c.accept(1.0);
+  }
+  EXPECT_NEAR(covered, 1.0, 1e-12);
+}
+
+TEST(StepControl, RefineSplitsEveryFrameOnItsOwnPath) {
+  StepControlSettings s;
+  s.frame = 1.0;
+  s.refine = 3;
+  StepControl c(s);
+  std::vector<NoiseInterval> pieces;
+  EXPECT_NEAR(tile(c, 9, &pieces), 1.0, 1e-15);
+  ASSERT_EQ(pieces.size(), 8u);
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    EXPECT_EQ(pieces[i].base, 9u);
+    EXPECT_EQ(pieces[i].depth, 3);
+    EXPECT_EQ(pieces[i].index, i);
+  }
+}
+
+// ---------------------------------------------------------------- trapped bodies
+
+// U = k (x - x_centre)^2 / 2: a trap along x only (y and z diffuse freely), so that the error
+// estimate, and so every rejection, depends on the noise along x alone: a 1-D process.
+class HarmonicTrap : public ForceLaw {
+ public:
+  HarmonicTrap(double k, std::vector<Vec3> centres) : k_(k), centres_(std::move(centres)) {}
+  double range(const System&) const override { return 2.0; }
+  void add(const System& s, const NodePairList&, double* wrench, Eigen::Matrix3d*) const override {
+    for (std::size_t i = 0; i < s.size(); ++i) wrench[6 * i] -= k_ * (s.positions()[i].x() - centres_[i].x());
+  }
+
+ private:
+  double k_;
+  std::vector<Vec3> centres_;
+};
+
+// A hydrodynamic model whose mobility depends on the configuration, as FLD's does near contact:
+// along x, m(r) = 0.1 + 0.9 r^2 / (1 + r^2), r = x - x_centre (1 in the other five directions).
+// The SDE dX = m F dt + kT m'(r) dt + sqrt(2 kT m) dW has the Boltzmann distribution of the trap
+// whatever m, provided the thermal drift kT m' is right, and the midpoint scheme makes that drift
+// from the noise: E[m'(r) dW^2] = m' dt.
+class PositionDependentMobility : public HydroModel {
+ public:
+  explicit PositionDependentMobility(std::vector<Vec3> centres) : centres_(std::move(centres)) {}
+  double pair_range(const System&) const override { return 0.0; }
+  std::vector<std::string> configure(const System& s, const HydroRequest&) override {
+    m_.assign(s.size(), 1.0);
+    return {};
+  }
+  void assemble(const System& s, const NodePairList&) override {
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      const double r = s.positions()[i].x() - centres_[i].x();
+      m_[i] = 0.1 + 0.9 * r * r / (1.0 + r * r);
+    }
+  }
+  void brownian_force(const System& s, const NodePairList&, const RandomStream& noise, double dt,
+                      double* FB) override {
+    const double scale = std::sqrt(2.0 * s.physics().kT / dt);
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      double xi[6];
+      noise.normals(i, xi, 6);
+      for (int c = 0; c < 6; ++c) FB[6 * i + c] = scale * xi[c] / (c == 0 ? std::sqrt(m_[i]) : 1.0);
+    }
+  }
+  void solve(const System& s, const double* F, double* dU) override {
+    for (std::size_t i = 0; i < s.size(); ++i)
+      for (int c = 0; c < 6; ++c) dU[6 * i + c] = (c == 0 ? m_[i] : 1.0) * F[6 * i + c];
+  }
+
+ private:
+  std::vector<Vec3> centres_;
+  std::vector<double> m_;
+};
+
+enum class Mobility { Constant, PositionDependent };
+
+struct TrapResult {
+  MeanWithError variance;  // <(x - x_centre)^2> k / kT: 1 exactly
+  double rejected_share = 0.0;
+  std::int64_t steps = 0;
+};
+
+// One body (k = 1, kT = 1) at dt: auto, frames of 0.1 a^2/D0, tolerance 0.02 a: steps of about
+// 0.03 a^2/D0. <x^2> from samples at every frame after a burn-in, 20 batch means of
+// `frames_per_block` frames (at least 100 a^2/D0 each, 200 correlation times 1/(2k) of x^2:
+// independent batches).
+TrapResult trapped_body(Mobility mobility, RejectedNoise noise, double reject_at, int frames_per_block) {
+  const double k = 1.0, frame = 0.1;
+  const int blocks = 20, burn_in = 50;
+  Physics ph;
+  ph.kT = 1.0;
+  auto shape = make<Shape>("shape", "sphere");
+  const std::vector<Vec3> centres{Vec3(20.0, 20.0, 20.0)};
+  Scene scene(shape, centres.size(), 40.0, ph);
+  scene.system->positions() = centres;
+  std::shared_ptr<HydroModel> hydro = mobility == Mobility::Constant
+                                          ? make<HydroModel>("hydro", "free_draining")
+                                          : std::make_shared<PositionDependentMobility>(centres);
+  scene.finish(hydro, {std::make_shared<HarmonicTrap>(k, centres)}, HydroRequest{true, false, false});
+  EulerMaruyama em(2024, true, DriftScheme::Midpoint, centres.size(), noise);
+  RunInfo info;
+  info.dt = frame;
+  StepControlSettings control;
+  control.adaptive = true;
+  control.frame = frame;
+  control.tolerance = 0.02;
+  control.reject_at = reject_at;
+  control.order = em.error_order();
+  std::vector<std::shared_ptr<Observer>> none;
+  StepLoop loop(*scene.system, em, *scene.evaluator, scene.list, none, info, true, true, control);
+  test::FakeSink sink;
+  for (int f = 0; f < burn_in; ++f) loop.step(sink);
+  std::vector<double> means;
+  for (int b = 0; b < blocks; ++b) {
+    double sum = 0.0;
+    for (int f = 0; f < frames_per_block; ++f) {
+      loop.step(sink);
+      const double x = scene.system->positions()[0].x() - centres[0].x();
+      sum += x * x;
+    }
+    means.push_back(sum / frames_per_block * k / ph.kT);
+  }
+  TrapResult r;
+  r.variance = mean_with_error(means);
+  const auto& st = loop.statistics();
+  r.steps = st.accepted_steps();
+  r.rejected_share = double(st.rejected_attempts()) / double(st.accepted_steps() + st.rejected_attempts());
+  return r;
+}
+
+void report(const char* what, const TrapResult& r) {
+  std::printf("%s: <x^2> k/kT = %.4f +- %.4f, %lld steps, %.2f %% of attempts rejected\n", what,
+              r.variance.mean, r.variance.se, static_cast<long long>(r.steps), 100.0 * r.rejected_share);
+}
+
+// Additive noise: rejecting on every error above the tolerance, with the bridge, is exact; with
+// redraw-on-reject the retried steps have smaller noise and the body comes out too cold.
+TEST(AdaptiveSteps, AdditiveNoiseStrictRejectionWithTheBridgeIsExactAndRedrawIsNot) {
+  const TrapResult good = trapped_body(Mobility::Constant, RejectedNoise::Bridge, 1.0, 15000);
+  report("constant mobility, bridge, reject_at 1", good);
+  EXPECT_GT(good.rejected_share, 0.05);  // the test is about rejections: there must be many
+  EXPECT_NEAR(good.variance.mean, 1.0, 3.0 * good.variance.se);
+
+  const TrapResult bad = trapped_body(Mobility::Constant, RejectedNoise::Redraw, 1.0, 15000);
+  report("constant mobility, redraw, reject_at 1", bad);
+  EXPECT_GT(std::fabs(bad.variance.mean - 1.0), 3.0 * bad.variance.se) << "redraw-on-reject went unnoticed";
+}
+
+// Configuration-dependent mobility: the default controller (reject_at 10: rejections rare) keeps
+// the exact distribution; rejecting at the tolerance, even with the bridge, biases it (the
+// quadratic variation over the refined partition is low, StepControl.hpp); redraw much more.
+TEST(AdaptiveSteps, MultiplicativeNoiseIsExactWithRareRejectionsOnly) {
+  const TrapResult good = trapped_body(Mobility::PositionDependent, RejectedNoise::Bridge, 10.0, 3000);
+  report("position-dependent mobility, bridge, reject_at 10", good);
+  EXPECT_NEAR(good.variance.mean, 1.0, 3.0 * good.variance.se);
+
+  const TrapResult strict = trapped_body(Mobility::PositionDependent, RejectedNoise::Bridge, 1.0, 3000);
+  report("position-dependent mobility, bridge, reject_at 1", strict);
+  EXPECT_GT(strict.rejected_share, 0.05);
+  EXPECT_GT(std::fabs(strict.variance.mean - 1.0), 3.0 * strict.variance.se);
+
+  const TrapResult redraw = trapped_body(Mobility::PositionDependent, RejectedNoise::Redraw, 1.0, 3000);
+  report("position-dependent mobility, redraw, reject_at 1", redraw);
+  EXPECT_GT(std::fabs(redraw.variance.mean - 1.0), 3.0 * redraw.variance.se);
+}
+
+}  // namespace
+}  // namespace fldsim::testing
