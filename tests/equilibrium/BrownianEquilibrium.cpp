@@ -67,8 +67,12 @@ BrownianEquilibrium run_brownian(const EquilibriumScene& scene, const BrownianOp
   }
   fldsim::test::FakeSink sink;
   for (auto& o : observers) o->begin(s, info, sink);
+  StepControlSettings fixed;
+  fixed.frame = opt.dt;
+  StepGuard guard;
+  guard.max_overlap = opt.max_overlap;
   StepLoop loop(s, integrator, *sc.evaluator, sc.list, observers, info, true,
-                opt.drift == DriftScheme::Midpoint);
+                opt.drift == DriftScheme::Midpoint, fixed, guard);
 
   BrownianEquilibrium out;
   out.g = oracle::RadialHistogram(oracle::PairPoints::BodyCentres, opt.bin_width, opt.r_max);
@@ -88,6 +92,7 @@ BrownianEquilibrium run_brownian(const EquilibriumScene& scene, const BrownianOp
   }
   out.Z = oracle::block_mean(out.Z_blocks);
   out.steps = s.step();
+  out.rejected = loop.statistics().rejected_attempts();
   for (auto& o : observers) o->finish(info, sink);
   if (opt.stress_every > 0) {
     const auto& z = sink.scalar("results/stress/Z");

@@ -37,6 +37,9 @@ struct BrownianOptions {
   std::uint64_t seed = 1;  // start and noise
   double bin_width = 0.01, r_max = 3.0;
   std::int64_t stress_every = 0;  // steps between stress-observer samples; 0 = no observer
+  // The step loop's stability guard (run.max_overlap): a step leaving a deeper node overlap is
+  // rejected and retried shorter, which would bias a potential whose equilibrium has such overlaps.
+  double max_overlap = 0.1;  // a
 };
 
 struct BrownianEquilibrium {
@@ -45,7 +48,8 @@ struct BrownianEquilibrium {
   oracle::MeanError Z;
   double Z_observer = 0.0, Z_observer_se = 0.0;  // from the stress observer (if stress_every > 0)
   std::int64_t steps = 0;
-  double min_gap = 0.0;  // smallest node surface gap seen at the samples
+  std::int64_t rejected = 0;  // step attempts the loop rejected (0 for an undisturbed fixed-step run)
+  double min_gap = 0.0;       // smallest node surface gap seen at the samples
   double seconds = 0.0;
 };
 
