@@ -25,7 +25,7 @@ struct FldsimFit {
 constexpr FldsimFit kFldsimFitAbrupt{0.5361, -4.6621, 0.0, 0.749, -2.469, 3.64, -6.95, 0.0};
 // The default smooth taper (width kDefaultTaperWidth) and contact strain arm: f_t to d_s and f_s
 // to Riest et al.'s high-frequency viscosity eta'_inf (docs/fld-r0-fit.md).
-constexpr FldsimFit kFldsimFitTapered{0.4786, 1.2022, -9.1894, 0.749, -2.469, 0.7522, 6.6406, -17.7930};
+constexpr FldsimFit kFldsimFitTapered{0.3788, 1.9794, -10.5060, 0.749, -2.469, 0.7956, 6.3030, -17.2213};
 // Width of the default smooth taper, in a (chosen by measurement: docs/lubrication-taper.md).
 constexpr double kDefaultTaperWidth = 0.3;
 }  // namespace
