@@ -98,10 +98,9 @@ BrownianEquilibrium run_brownian(const EquilibriumScene& scene, const BrownianOp
   out.rejected = loop.statistics().rejected_attempts();
   for (auto& o : observers) o->finish(info, sink);
   if (opt.stress_every > 0) {
-    const auto& pi = sink.scalar("results/stress/Pi_interparticle_kT");
-    const double n = double(s.size()) / s.box().volume();
-    out.Z_observer = 1.0 + pi.value / n;
-    out.Z_observer_se = pi.stderr_value / n;
+    const auto& z = sink.scalar("results/stress/Z");
+    out.Z_observer = z.value;
+    out.Z_observer_se = z.stderr_value;
   }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return out;

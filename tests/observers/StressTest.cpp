@@ -57,7 +57,7 @@ TEST(BulkStress, EinsteinViscosityOfDiluteSpheres) {
 
 TEST(BulkStress, InterparticleStressOfAPairIsMinusRFOverV) {
   // Two bodies, repulsive central force F = 3 along r = x_j - x_i on body j (and -F on i).
-  // The pieces hold -sum r (x) f_j (observer.hpp), as the core builds them.
+  // The pieces hold -sum R (x) f_j (observer.hpp), as the core builds them (R = X_j - X_i).
   const Vec3 r(1.5, 0.8, 0.3);
   const Vec3 f = 3.0 * r.normalized();
   StressPieces p;
@@ -111,6 +111,9 @@ TEST(StressObserver, WritesEinsteinViscosityAndParts) {
   EXPECT_NEAR(sink.scalar("results/stress/Pi_interparticle").value, r.dot(f) / (3.0 * V) / (kMu * gd), 1e-12);
   // kT = 1: the same pressure in kT/a^3 is the raw stress.
   EXPECT_NEAR(sink.scalar("results/stress/Pi_interparticle_kT").value, r.dot(f) / (3.0 * V), 1e-15);
+  // Z = 1 + Pi_P/(n kT) with n = N/V, kT = 1: 1 + r.f/(3 N).
+  EXPECT_NEAR(sink.scalar("results/stress/Z").value, 1.0 + r.dot(f) / (3.0 * n), 1e-12);
+  EXPECT_EQ(sink.scalar("results/stress/Z").unit, "1");
   // Particle shear stress in kT/a^3 (kT = 1): the raw sigma_xy.
   EXPECT_NEAR(sink.scalar("results/stress/shear_stress_kT").value, (2.5 * phi + eta_p) * kMu * gd, 1e-15);
   // No Brownian stress was provided: it is reported absent, not as a measured zero.

@@ -87,7 +87,7 @@ TEST_F(YukawaPlugin, ForceBetweenTwoSpheresIsTheClosedForm) {
   EXPECT_NEAR(w[6], expected, 1e-12 * expected);               // body 1 pushed along +x
   EXPECT_NEAR(w[0], -expected, 1e-12 * expected);              // Newton's third law
   for (int k : {1, 2, 3, 4, 5, 7, 8, 9, 10, 11}) EXPECT_EQ(w[k], 0.0) << "component " << k;
-  EXPECT_NEAR(virial(0, 0), r * expected, 1e-12 * r * expected);  // sum r (x) f_j
+  EXPECT_NEAR(virial(0, 0), r * expected, 1e-12 * r * expected);  // sum R (x) f_j, R = X_j - X_i
 }
 
 TEST_F(YukawaPlugin, OffCentreNodeGivesTorqueRCrossF) {

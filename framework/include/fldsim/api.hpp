@@ -7,11 +7,12 @@
 #include <Eigen/Core>  // for its version and alignment in the build tag
 #include <cstdint>
 
-// Major: any change to a class a plugin derives from or receives (2: Observer save/restore_state).
-// Minor: additions a plugin built against an older minor can ignore (2.1: fldsim::PairEnergy, the
-// optional pair energy of a force law, a class of its own so ForceLaw's vtable is unchanged).
-#define FLDSIM_API_MAJOR 2
-#define FLDSIM_API_MINOR 1
+// Major: any change to a class a plugin derives from or receives (2: Observer save/restore_state;
+// 3: ForceLaw::add's virial is the molecular (body-centre) virial, no longer node-node).
+// Minor: additions a plugin built against an older minor can ignore (fldsim::PairEnergy, the
+// optional pair energy of a force law, came in 2.1 as a class of its own).
+#define FLDSIM_API_MAJOR 3
+#define FLDSIM_API_MINOR 0
 
 #define FLDSIM_STR2(x) #x
 #define FLDSIM_STR(x) FLDSIM_STR2(x)

@@ -15,15 +15,20 @@ class FLDSIM_VISIBLE ForceLaw : public Component {
   // Largest node centre distance at which the law acts (the core's pair list covers it).
   virtual double range(const System& system) const = 0;
   // Add body forces and torques (6 per body: F then T) of all pairs in `pairs` to `wrench`.
-  // If `virial` is not null, also add sum over node pairs of r (x) f_j, where r = x_j - x_i and
-  // f_j is the force on node j; the interparticle stress is -virial / V.
+  // If `virial` is not null, also add the molecular virial of the pairs (API 3):
+  //   sum over node pairs of R (x) f_j,  R = X_j - X_i = r - d_jb + d_ia,
+  // the separation of the two bodies' centres in the pair's image (r = x_j - x_i of the nodes,
+  // d the node offsets, system.node_offsets()) and f_j the force on node j. The interparticle
+  // stress of rigid bodies is -virial / V, and at equilibrium the osmotic pressure is
+  // Pi = n kT + tr(virial) / (3 V) (docs/equilibrium-oracle.md). The node-node sum r (x) f_j
+  // (API 2) differs by the intra-body constraint virial and is not the pressure of rigid bodies.
   virtual void add(const System& system, const NodePairList& pairs, double* wrench,
                    Eigen::Matrix3d* virial) const = 0;
 };
 
-// The potential a force law derives from (API 2.1). A law with an energy derives from both
-// ForceLaw and PairEnergy; a law without one (a dissipative or non-conservative law, or a plugin
-// built against API 2.0) does not, and pair_energy_of() returns null for it. The equilibrium
+// The potential a force law derives from (API 2.1; 3.0 keeps it). A law with an energy derives from both
+// ForceLaw and PairEnergy; a law without one (a dissipative or non-conservative law) does not,
+// and pair_energy_of() returns null for it. The equilibrium
 // Monte Carlo oracle (`fldsim oracle`, docs/equilibrium-oracle.md) samples exp(-U/kT) with
 //   U = sum over node pairs (a of body i, b of body j != i) of pair_energy(system, pair),
 // so the energy must be the one whose gradient add() applies: f_j = -dU/dx_j for every node

@@ -34,7 +34,7 @@ struct RunInfo {
 // ObserverNeeds::stress was requested.
 struct StressPieces {
   Eigen::Matrix3d hydrodynamic = Eigen::Matrix3d::Zero();   // sum of hydrodynamic stresslets
-  Eigen::Matrix3d interparticle = Eigen::Matrix3d::Zero();  // -sum r (x) f over node pairs
+  Eigen::Matrix3d interparticle = Eigen::Matrix3d::Zero();  // -sum R (x) f_j (molecular virial, force.hpp)
   Eigen::Matrix3d brownian = Eigen::Matrix3d::Zero();       // Brownian stress (drift term), if computed
 };
 

@@ -1,7 +1,7 @@
 // The bulk stress pieces of one step, for the stress observer (only on steps it samples):
 //   hydrodynamic  = sum of stresslets at the start x of the step with the deterministic velocity
 //                   dU_det = M(x) (F_P + R_FE:E_inf) (one extra solve without F_B), + R_SE:E_inf;
-//   interparticle = -sum r (x) f over node pairs at x (the force laws' virial);
+//   interparticle = -sum R (x) f_j over node pairs at x (the force laws' molecular virial, force.hpp);
 //   brownian      = S(x', dU_mid) - S(x, dU_start), the change of the full stresslet sum between
 //                   the start and the midpoint stage of the midpoint scheme (same F_B).
 // Why the Brownian piece is right: with L the stresslet's linear map of dU (-R_SU) and the

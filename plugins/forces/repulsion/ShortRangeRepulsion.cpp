@@ -85,7 +85,8 @@ void ShortRangeRepulsion::add(const System& system, const NodePairList& pairs, d
     const Vec3 fj = f * d;  // pushes j away from i
     add_node_wrench(wrench + 6 * p.body_j, off[p.body_j * m + p.node_b], fj, Vec3::Zero());
     add_node_wrench(wrench + 6 * p.body_i, off[p.body_i * m + p.node_a], -fj, Vec3::Zero());
-    if (virial) *virial += p.r * fj.transpose();
+    // Molecular virial: the bodies' centre separation R = r - d_jb + d_ia (force.hpp).
+    if (virial) *virial += (p.r - off[p.body_j * m + p.node_b] + off[p.body_i * m + p.node_a]) * fj.transpose();
   }
 }
 

@@ -1,14 +1,21 @@
 // Bulk stress of a suspension from the box sums the core provides (StressPieces):
 //   sigma = -p I + 2 mu E_inf + sigma_H + sigma_P + sigma_B
 //   sigma_H = (1/V) sum S^H            hydrodynamic stresslets (Batchelor, J. Fluid Mech. 41, 545 (1970))
-//   sigma_P = -(1/V) sum r (x) f       interparticle (virial) part (Brady & Bossis, Annu. Rev. Fluid
-//                                      Mech. 20, 111 (1988)); StressPieces::interparticle already holds
-//                                      -sum r (x) f (force.hpp: "interparticle stress is -virial / V"),
-//                                      so sigma_P = StressPieces::interparticle / V
+//   sigma_P = -(1/V) sum R (x) f       interparticle (virial) part (Brady & Bossis, Annu. Rev. Fluid
+//                                      Mech. 20, 111 (1988)) with R = X_j - X_i the separation of the
+//                                      bodies' centres (the molecular virial: for rigid bodies the
+//                                      moments of the node forces about their centres are carried by
+//                                      the bodies, and the fluid sees only F and T); StressPieces::
+//                                      interparticle already holds -sum R (x) f (force.hpp: "stress is
+//                                      -virial / V"), so sigma_P = StressPieces::interparticle / V
 //   sigma_B = (1/V) StressPieces::brownian   Brownian (drift) part (Foss & Brady, J. Fluid Mech. 407,
 //                                      167 (2000)) when the hydrodynamics provides it
 // The solvent pressure p is undetermined in an incompressible Stokes flow and left out; the
 // particle pressure is Pi = -tr(sigma_H + sigma_P + sigma_B)/3 (Jeffrey, Morris & Brady 1993).
+// The osmotic pressure of an equilibrium (Pe = 0) suspension is the thermodynamic one,
+// n kT + Pi_P with Pi_P = -tr(sigma_P)/3 = tr(sum R (x) f)/(3V): the compressibility factor
+// Z = 1 + Pi_P/(n kT), for any body shape (hydrodynamic and Brownian stresses do not enter it:
+// Brady, J. Chem. Phys. 98, 3335 (1993)).
 // Rheology under u = gammadot y x (E_inf,xy = gammadot/2): eta_r = sigma_xy/(mu gammadot),
 // N1 = sigma_xx - sigma_yy, N2 = sigma_yy - sigma_zz.
 #pragma once

@@ -12,6 +12,7 @@ void StressObserver::begin(const System& system, const RunInfo& run, ResultSink&
   viscosity_ = system.physics().viscosity;
   shear_rate_ = system.physics().shear_rate;
   kT_ = system.physics().kT;
+  bodies_ = system.size();
   const std::size_t expected =
       static_cast<std::size_t>(run.total_steps / std::max<std::int64_t>(1, every()) + 1);
   for (auto& part : series_)
@@ -116,6 +117,15 @@ void StressObserver::finish(const RunInfo&, ResultSink& out) {
         write_blocked(out, r + names[q] + suffix, series_[p][q], stress_unit(), what[q] + part);
       }
     }
+  }
+  if (kT_ > 0.0) {
+    // Z = 1 + Pi_P/(n kT): the interparticle pressure is the molecular virial (force.hpp), so at
+    // Pe = 0 this is the osmotic compressibility factor of rigid bodies of any shape (BulkStress.hpp).
+    const double n = double(bodies_) / volume_;
+    write_blocked(out, r + "Z", series_[kInterparticle][3], "1",
+                  "compressibility factor Z = 1 + Pi_interparticle/(n kT) (molecular virial; the osmotic "
+                  "equation of state at Pe = 0)",
+                  1.0 / (n * kT_), 1.0);
   }
 }
 

@@ -1,5 +1,6 @@
 // Observer `stress`: relative viscosity, normal stress differences and particle pressure, each
-// split into hydrodynamic, interparticle and Brownian parts (formulas in BulkStress.hpp).
+// split into hydrodynamic, interparticle and Brownian parts (formulas in BulkStress.hpp), and for
+// Brownian runs the compressibility factor Z = 1 + Pi_interparticle/(n kT).
 #pragma once
 
 #include <string>
@@ -28,6 +29,7 @@ class StressObserver : public Observer {
 
  private:
   double volume_ = 1.0, viscosity_ = 1.0, shear_rate_ = 0.0, kT_ = 0.0;
+  std::size_t bodies_ = 0;
   BlockAverage series_[4][4];
   Eigen::Matrix3d sum_[4];
   std::size_t samples_ = 0;
