@@ -77,9 +77,10 @@ ParamSchema run_schema() {
             "same noise as the unrefined run, resolved finer): strong-convergence references")
       .at_least(0)
       .at_most(20);
-  s.number("max_overlap", 0.1, "a",
-           "stability guard, in every mode: a step that leaves two nodes overlapping by more than this (and "
-           "more than before it) is rejected and retried on a shorter step")
+  s.number(
+       "max_overlap", 0.1, "a",
+       "stability guard, in every mode: a step that leaves two nodes overlapping by more than this (and "
+       "deepens the deepest overlap by more than a tenth of it) is rejected and retried on a shorter step")
       .greater(0.0);
   s.number("duration", std::nullopt, "time_unit", "length of the run").greater(0.0);
   s.choice("time_unit", "paper", {"paper", "diffusive", "strain"},
@@ -352,7 +353,8 @@ Experiment read_experiment(const std::string& file, const std::vector<std::strin
   if (ex.dt > 0 && ex.duration > 0 && ex.dt > ex.duration)
     errors.add(ex.dt_auto ? run["dt_max"] : run["dt"], ex.dt_auto ? "run.dt_max" : "run.dt",
                "expected a time step no longer than run.duration");
-  if (ex.reject_at == 0.0) ex.reject_at = ex.brownian ? 10.0 : 1.0;
+  if (ex.reject_at == 0.0)
+    ex.reject_at = ex.brownian ? 10.0 : 1.0;
   else if (ex.reject_at < 1.0)
     errors.add(run["reject_at"], "run.reject_at", "expected 0 (automatic) or a number >= 1");
   if (ex.dt_auto && ex.brownian && ex.drift == "none")
