@@ -1,11 +1,12 @@
 # fldsim — the two commands: `make demo` and `make test` (each installs what is missing,
-# builds, then runs). `make bench` runs the benchmarks, `make figures` the quick study plots.
+# builds, then runs). `make bench` runs the benchmarks, `make validate` the long physics
+# validations, `make figures` the quick study plots.
 SHELL := /bin/bash
 BUILD ?= build
 JOBS ?= $(shell nproc)
 FLDSIM = $(BUILD)/bin/fldsim
 
-.PHONY: all deps configure build demo test bench figures docs format clean
+.PHONY: all deps configure build demo test bench validate figures docs format clean
 
 all: build
 
@@ -35,6 +36,10 @@ test: build
 
 bench: build
 	@bash bench/run.sh $(BUILD)
+
+# Long physics validations (validate/README.md); `make validate V="equilibrium"` runs only those named.
+validate: build
+	@bash validate/run.sh $(BUILD) $(V)
 
 figures: build
 	@bash examples/paper/quick/run_quick_study.sh $(BUILD)

@@ -73,8 +73,10 @@ BrownianEquilibrium run_brownian(const EquilibriumScene& scene, const BrownianOp
   control.tolerance = opt.tolerance;
   control.reject_at = opt.reject_at;
   control.order = integrator.error_order();
+  StepGuard guard;
+  guard.max_overlap = opt.max_overlap;
   StepLoop loop(s, integrator, *sc.evaluator, sc.list, observers, info, true,
-                opt.drift == DriftScheme::Midpoint, control);
+                opt.drift == DriftScheme::Midpoint, control, guard);
 
   BrownianEquilibrium out;
   out.g = oracle::RadialHistogram(oracle::PairPoints::BodyCentres, opt.bin_width, opt.r_max);

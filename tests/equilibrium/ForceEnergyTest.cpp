@@ -203,8 +203,9 @@ TEST(ForceVirial, EveryForceReportsTheMolecularVirialOfRigidBodies) {
     const oracle::Virials v = independent.measure(s);
     ASSERT_GT(v.body.norm(), 0.0) << "no pair within the force's range: the test checks nothing";
     EXPECT_GT((v.node - v.body).norm(), 1e-3 * v.body.norm()) << "node and body virials coincide here";
-    EXPECT_LT((reported - v.body).norm(), 1e-10 * v.body.norm()) << "reported\n" << reported << "\nmolecular\n"
-                                                                  << v.body;
+    EXPECT_LT((reported - v.body).norm(), 1e-10 * v.body.norm()) << "reported\n"
+                                                                 << reported << "\nmolecular\n"
+                                                                 << v.body;
   }
 }
 

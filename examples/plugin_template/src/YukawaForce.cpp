@@ -56,8 +56,7 @@ void YukawaForce::add(const fldsim::System& system, const fldsim::NodePairList& 
     // The molecular virial (fldsim API 3): the separation of the two bodies' centres R = X_j - X_i,
     // i.e. the node separation r less the node offsets, times the force on node j.
     if (virial)
-      *virial +=
-          (p.r - offsets[p.body_j * m + p.node_b] + offsets[p.body_i * m + p.node_a]) * fj.transpose();
+      *virial += (p.r - offsets[p.body_j * m + p.node_b] + offsets[p.body_i * m + p.node_a]) * fj.transpose();
   }
 }
 

@@ -86,7 +86,8 @@ void ShortRangeRepulsion::add(const System& system, const NodePairList& pairs, d
     add_node_wrench(wrench + 6 * p.body_j, off[p.body_j * m + p.node_b], fj, Vec3::Zero());
     add_node_wrench(wrench + 6 * p.body_i, off[p.body_i * m + p.node_a], -fj, Vec3::Zero());
     // Molecular virial: the bodies' centre separation R = r - d_jb + d_ia (force.hpp).
-    if (virial) *virial += (p.r - off[p.body_j * m + p.node_b] + off[p.body_i * m + p.node_a]) * fj.transpose();
+    if (virial)
+      *virial += (p.r - off[p.body_j * m + p.node_b] + off[p.body_i * m + p.node_a]) * fj.transpose();
   }
 }
 
