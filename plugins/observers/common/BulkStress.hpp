@@ -14,8 +14,11 @@
 // particle pressure is Pi = -tr(sigma_H + sigma_P + sigma_B)/3 (Jeffrey, Morris & Brady 1993).
 // The osmotic pressure of an equilibrium (Pe = 0) suspension is the thermodynamic one,
 // n kT + Pi_P with Pi_P = -tr(sigma_P)/3 = tr(sum R (x) f)/(3V): the compressibility factor
-// Z = 1 + Pi_P/(n kT), for any body shape (hydrodynamic and Brownian stresses do not enter it:
-// Brady, J. Chem. Phys. 98, 3335 (1993)).
+// Z = 1 + Pi_P/(n kT), for any body shape, as an average over the Boltzmann distribution of the
+// potential. A run that does not sample that distribution near contact does not get it from Pi_P:
+// FLD at its default lubrication clamp keeps pairs out of the repulsion's overlap ramp, and the
+// contact pressure appears in the Brownian stress instead (as for hard spheres with hydrodynamics,
+// Brady, J. Chem. Phys. 98, 3335 (1993)); figures in docs/equilibrium-oracle.md.
 // Rheology under u = gammadot y x (E_inf,xy = gammadot/2): eta_r = sigma_xy/(mu gammadot),
 // N1 = sigma_xx - sigma_yy, N2 = sigma_yy - sigma_zz.
 #pragma once

@@ -120,11 +120,13 @@ void StressObserver::finish(const RunInfo&, ResultSink& out) {
   }
   if (kT_ > 0.0) {
     // Z = 1 + Pi_P/(n kT): the interparticle pressure is the molecular virial (force.hpp), so at
-    // Pe = 0 this is the osmotic compressibility factor of rigid bodies of any shape (BulkStress.hpp).
+    // Pe = 0 this is the osmotic compressibility factor of rigid bodies of any shape (BulkStress.hpp),
+    // provided the run samples the potential's equilibrium near contact (FLD's default does not).
     const double n = double(bodies_) / volume_;
     write_blocked(out, r + "Z", series_[kInterparticle][3], "1",
                   "compressibility factor Z = 1 + Pi_interparticle/(n kT) (molecular virial; the osmotic "
-                  "equation of state at Pe = 0)",
+                  "equation of state at Pe = 0 if the run samples the potential's equilibrium near contact, "
+                  "docs/equilibrium-oracle.md)",
                   1.0 / (n * kT_), 1.0);
   }
 }
