@@ -20,6 +20,7 @@ class TimedHydro : public HydroModel {
   explicit TimedHydro(std::shared_ptr<HydroModel> inner) : inner_(std::move(inner)) {}
 
   double pair_range(const System& s) const override { return inner_->pair_range(s); }
+  bool provides_stresslets() const override { return inner_->provides_stresslets(); }
   std::vector<std::string> configure(const System& s, const HydroRequest& r) override {
     return inner_->configure(s, r);
   }

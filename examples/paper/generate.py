@@ -124,7 +124,7 @@ def main():
                 written.append(write(
                     os.path.join(HERE, shape, n + ".yaml"),
                     experiment(shape, c, phi, pe, 1000, paper_dt(pe, phi), 500.0, 150.0, 0.5,
-                               f"results/paper/{n}.h5",
+                               f"../../../results/paper/{n}.h5",
                                "Kumar & Higdon study: N = 1000, t* = 500, averages from t* = 150")))
     for shape, phi in QUICK_ROWS:
         for pe in QUICK_PE:
@@ -133,7 +133,7 @@ def main():
             written.append(write(
                 os.path.join(HERE, "quick", n + ".yaml"),
                 experiment(shape, SHAPES[shape], phi, pe, QUICK_COUNT, dt, duration, start, sample,
-                           f"results/quick/{n}.h5",
+                           f"../../../results/quick/{n}.h5",
                            "quick study: the paper's study reduced (see examples/paper/quick/README.md)")))
     for p in written:
         print(os.path.relpath(p, os.path.dirname(os.path.dirname(HERE))))

@@ -21,6 +21,7 @@
 #include "plugins/PluginRegistry.hpp"
 #include "run/Experiment.hpp"
 #include "run/RunExperiment.hpp"
+#include "run/Simulation.hpp"
 
 namespace {
 
@@ -139,10 +140,12 @@ int cmd_run(const std::vector<std::string>& args, bool check_only) {
     // Construct every plugin once: checks that need a plugin's own knowledge (Params::fail in its
     // constructor, e.g. a projection listed twice) then fail here too, not only at `run`.
     registry->create<fldsim::Shape>("shape", ex.shape.name, ex.shape.params);
-    registry->create<fldsim::HydroModel>("hydro", ex.hydro.name, ex.hydro.params);
+    const auto hydro = registry->create<fldsim::HydroModel>("hydro", ex.hydro.name, ex.hydro.params);
     for (const auto& f : ex.forces) registry->create<fldsim::ForceLaw>("force", f.name, f.params);
+    std::vector<std::shared_ptr<fldsim::Observer>> observers;
     for (const auto& o : ex.observers)
-      registry->create<fldsim::Observer>("observer", o.plugin.name, o.plugin.params);
+      observers.push_back(registry->create<fldsim::Observer>("observer", o.plugin.name, o.plugin.params));
+    fldsim::check_observer_needs(ex, *hydro, observers);
     std::cout << file << ": valid (" << ex.count << " x " << ex.shape.name << ", hydro " << ex.hydro.name
               << ", " << ex.forces.size() << " force(s), " << ex.observers.size() << " observer(s))\n";
     return 0;

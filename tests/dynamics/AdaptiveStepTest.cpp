@@ -153,6 +153,7 @@ class PositionDependentMobility : public HydroModel {
  public:
   explicit PositionDependentMobility(std::vector<Vec3> centres) : centres_(std::move(centres)) {}
   double pair_range(const System&) const override { return 0.0; }
+  bool provides_stresslets() const override { return false; }
   std::vector<std::string> configure(const System& s, const HydroRequest&) override {
     m_.assign(s.size(), 1.0);
     return {};

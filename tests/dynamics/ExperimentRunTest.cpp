@@ -111,6 +111,61 @@ TEST(ExperimentRun, OverrideAcceptsTheIndexFormThatErrorsPrint) {
   EXPECT_EQ(run("check " + (d / "e.yaml").string() + " --set forces[0].prefactor=20").code, 0);
 }
 
+// Paths are relative to where they are written: `output:` in the file to the file's directory
+// (whatever the current directory), `--set output=...` on the command line to the current one.
+TEST(ExperimentRun, RelativePathsFollowWhereTheyAreWritten) {
+  const fs::path d = scratch("relative");
+  const fs::path elsewhere = scratch("relative-cwd");
+  write(d / "e.yaml",
+        experiment("results/out.h5", 0.002, "fld", "observers:\n  - {plugin: trajectory, every: 1}\n"));
+  const std::string fldsim = std::string(FLDSIM_BINARY_DIR) + "/bin/fldsim";
+  ASSERT_EQ(
+      std::system(
+          ("cd " + elsewhere.string() + " && " + fldsim + " run -q " + (d / "e.yaml").string()).c_str()),
+      0);
+  EXPECT_TRUE(fs::exists(d / "results" / "out.h5"));
+  EXPECT_FALSE(fs::exists(elsewhere / "results" / "out.h5"));
+  ASSERT_EQ(std::system(("cd " + elsewhere.string() + " && " + fldsim + " run -q " + (d / "e.yaml").string() +
+                         " --set output=cli.h5")
+                            .c_str()),
+            0);
+  EXPECT_TRUE(fs::exists(elsewhere / "cli.h5"));
+  // system.init.file likewise: the result above, named relative to a second file beside it.
+  std::string from_file = experiment("results/again.h5", 0.002);
+  const std::string mc = "init: {method: monte_carlo, seed: 3, sweeps: 50}";
+  from_file.replace(from_file.find(mc), mc.size(), "init: {method: file, file: results/out.h5}");
+  write(d / "again.yaml", from_file);
+  const Command again = run("run " + (d / "again.yaml").string());
+  ASSERT_EQ(again.code, 0) << again.output;
+  EXPECT_NE(again.output.find("start: last frame of " + (d / "results" / "out.h5").string()),
+            std::string::npos)
+      << again.output;
+  EXPECT_TRUE(fs::exists(d / "results" / "again.h5"));
+}
+
+// Progress is on by default for runs of 1000 steps or more, off with run.progress: off or -q.
+TEST(ExperimentRun, LongRunsReportProgressUnlessTurnedOff) {
+  const fs::path d = scratch("progress");
+  write(d / "long.yaml", experiment((d / "long.h5").string(), 1.0));    // 1000 steps
+  write(d / "short.yaml", experiment((d / "short.h5").string(), 0.5));  // 500 steps
+  const Command on = run("run " + (d / "long.yaml").string());
+  ASSERT_EQ(on.code, 0) << on.output;
+  EXPECT_NE(on.output.find("progress: 1000 steps"), std::string::npos) << on.output;
+  const Command off = run("run " + (d / "long.yaml").string() + " --overwrite --set run.progress=off");
+  ASSERT_EQ(off.code, 0) << off.output;
+  EXPECT_EQ(off.output.find("progress:"), std::string::npos) << off.output;
+  EXPECT_NE(off.output.find("done: 1000 steps"), std::string::npos) << off.output;
+  const Command quiet = run("run -q " + (d / "long.yaml").string() + " --overwrite");
+  ASSERT_EQ(quiet.code, 0) << quiet.output;
+  EXPECT_EQ(quiet.output, "");
+  const Command brief = run("run " + (d / "short.yaml").string());
+  ASSERT_EQ(brief.code, 0) << brief.output;
+  EXPECT_EQ(brief.output.find("progress:"), std::string::npos) << brief.output;
+  const Command asked = run("run " + (d / "short.yaml").string() + " --overwrite --set run.progress=on");
+  ASSERT_EQ(asked.code, 0) << asked.output;
+  EXPECT_NE(asked.output.find("progress: 500 steps"), std::string::npos) << asked.output;
+}
+
 // A check only the plugin can make (in its constructor) is made by `check` too, not first at `run`.
 TEST(ExperimentRun, CheckConstructsPluginsSoTheirOwnChecksFail) {
   const fs::path d = scratch("plugin-check");

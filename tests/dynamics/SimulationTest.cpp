@@ -93,5 +93,83 @@ TEST(Simulation, CaptureThenApplyContinuesBitForBit) {
   EXPECT_EQ(resumed->log.str().find("start afresh"), std::string::npos) << resumed->log.str();
 }
 
+// A third-party hydro model that leaves the stresslets out: it says so, and asking anyway throws.
+class NoStressletHydro : public HydroModel {
+ public:
+  double pair_range(const System&) const override { return 0.0; }
+  std::vector<std::string> configure(const System&, const HydroRequest&) override { return {}; }
+  void assemble(const System&, const NodePairList&) override {}
+  void brownian_force(const System& s, const NodePairList&, const RandomStream&, double,
+                      double* FB) override {
+    std::fill(FB, FB + 6 * s.size(), 0.0);
+  }
+  void solve(const System& s, const double* F, double* dU) override { std::copy(F, F + 6 * s.size(), dU); }
+  bool provides_stresslets() const override { return false; }
+};
+
+// The parts of the test experiment with its hydro model replaced by NoStressletHydro; the
+// observers listed by index (0 orientation, 1 stress).
+SimulationParts parts_without_stresslets(const Built& b, const std::vector<std::size_t>& observers) {
+  SimulationParts parts;
+  auto shape = b.registry->create<Shape>("shape", b.ex.shape.name, b.ex.shape.params);
+  parts.system = std::make_unique<System>(shape, 8, 10.0, b.sim->system().physics());
+  for (std::size_t i = 0; i < 8; ++i)
+    parts.system->positions()[i] = Vec3(2.5 + 5.0 * (i % 2), 2.5 + 5.0 * (i / 2 % 2), 2.5 + 5.0 * (i / 4));
+  parts.system->update_nodes();
+  parts.hydro_name = "no_stresslets";
+  parts.hydro = std::make_shared<NoStressletHydro>();
+  for (std::size_t i : observers) {
+    const auto& o = b.ex.observers[i];
+    parts.observers.push_back(b.registry->create<Observer>("observer", o.plugin.name, o.plugin.params));
+    parts.observer_keys.push_back("observers[" + std::to_string(i) + "]." + o.plugin.name);
+  }
+  return parts;
+}
+
+TEST(Simulation, RefusesAStressObserverWhenTheHydroModelHasNoStresslets) {
+  auto b = build(experiment_file());
+  SimulationSettings settings;
+  settings.dt = 1e-3;
+  settings.total_steps = 1;
+  test::FakeSink sink;
+  std::ostringstream log;
+  try {
+    Simulation sim(parts_without_stresslets(*b, {0, 1}), settings, sink, log);
+    FAIL() << "a stress observer ran with a model that provides no stresslets";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(
+        std::string(e.what()),
+        "observers[1].stress: needs the hydrodynamic stresslets, which hydro plugin 'no_stresslets' does "
+        "not provide (HydroModel::provides_stresslets)");
+  }
+  // Without the stress observer the same model runs.
+  Simulation sim(parts_without_stresslets(*b, {0}), settings, sink, log);
+  sim.step();
+  EXPECT_EQ(sim.system().step(), 1);
+  // From an experiment the refusal names the observer block's file:line:col (line 13: the stress
+  // observer of experiment_file()), as `fldsim check` prints it.
+  std::vector<std::shared_ptr<Observer>> observers;
+  for (const auto& o : b->ex.observers)
+    observers.push_back(b->registry->create<Observer>("observer", o.plugin.name, o.plugin.params));
+  NoStressletHydro no_stresslets;
+  try {
+    check_observer_needs(b->ex, no_stresslets, observers);
+    FAIL() << "check_observer_needs accepted a stress observer without stresslets";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              b->ex.file +
+                  ":13:5: observers[1].plugin: observer 'stress' needs the hydrodynamic "
+                  "stresslets, which hydro plugin 'fld' does not provide "
+                  "(HydroModel::provides_stresslets)");
+  }
+  observers.erase(observers.begin() + 1);
+  Experiment without_stress = b->ex;
+  without_stress.observers.erase(without_stress.observers.begin() + 1);
+  EXPECT_NO_THROW(check_observer_needs(without_stress, no_stresslets, observers));
+  // And nobody gets a silent zero: asking the model anyway throws.
+  NoStressletHydro model;
+  EXPECT_THROW(model.stresslet_sum(sim.system(), NodePairList{}, nullptr), Error);
+}
+
 }  // namespace
 }  // namespace fldsim

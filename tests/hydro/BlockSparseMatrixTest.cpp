@@ -8,6 +8,7 @@
 #endif
 
 #include "fldsim/block_sparse.hpp"
+#include "linalg/BlockIncompleteCholesky.hpp"
 
 using fldsim::BlockPCG;
 using fldsim::BlockSparseMatrix;

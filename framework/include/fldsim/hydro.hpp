@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 
+#include "fldsim/error.hpp"
 #include "fldsim/neighbours.hpp"
 #include "fldsim/plugin_base.hpp"
 #include "fldsim/random.hpp"
@@ -18,9 +19,9 @@ namespace fldsim {
 // What the run needs from the model, fixed before the first step, so the model can skip
 // (and say it skips) everything else.
 struct HydroRequest {
-  bool brownian = true;    // kT > 0: Brownian forces needed
-  bool shear = true;       // gammadot != 0: R_FE:E_inf needed
-  bool stresslets = false; // a stress observer is active
+  bool brownian = true;     // kT > 0: Brownian forces needed
+  bool shear = true;        // gammadot != 0: R_FE:E_inf needed
+  bool stresslets = false;  // a stress observer is active
 };
 
 struct SolveStats {
@@ -45,11 +46,19 @@ class FLDSIM_VISIBLE HydroModel : public Component {
   // Solve R_FU dU = F + R_FE:E_inf for dU = U - U_inf (6N). On entry dU holds the warm start.
   virtual void solve(const System& system, const double* F, double* dU) = 0;
   virtual SolveStats last_solve() const { return {}; }
+  // Whether the model computes stresslet_sum. A model that does not cannot run with an observer
+  // that needs the stress pieces (`stress`): the core refuses the experiment rather than report a
+  // hydrodynamic stress of zero. (API 4.0: every model must say.)
+  virtual bool provides_stresslets() const = 0;
   // Sum over bodies of the hydrodynamic stresslet S^H = -(R_SU dU - R_SE:E_inf) (3x3, symmetric),
-  // for the velocities of the last solve. Only called when HydroRequest::stresslets was set.
+  // for the velocities of the last solve. Only called when HydroRequest::stresslets was set, which
+  // needs provides_stresslets(). There is no zero default: a model that provides no stresslets
+  // and is asked anyway throws.
   virtual Eigen::Matrix3d stresslet_sum(const System& system, const NodePairList& pairs, const double* dU) {
-    (void)system; (void)pairs; (void)dU;
-    return Eigen::Matrix3d::Zero();
+    (void)system;
+    (void)pairs;
+    (void)dU;
+    throw Error("hydro: stresslet_sum called on a model that provides no stresslets");
   }
 };
 

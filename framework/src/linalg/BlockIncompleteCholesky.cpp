@@ -1,3 +1,5 @@
+#include "linalg/BlockIncompleteCholesky.hpp"
+
 #include <omp.h>
 
 #include <Eigen/Cholesky>
@@ -6,7 +8,6 @@
 #include <memory>
 #include <thread>
 
-#include "fldsim/block_sparse.hpp"
 #include "linalg/GrowOnly.hpp"
 
 namespace fldsim {

@@ -2,6 +2,7 @@
 #include <cmath>
 
 #include "fldsim/block_sparse.hpp"
+#include "linalg/BlockIncompleteCholesky.hpp"
 
 namespace fldsim {
 namespace {
@@ -9,54 +10,80 @@ namespace {
 constexpr std::size_t kChunk = 6 * 256;
 }  // namespace
 
+// The solver's state: which preconditioner, its factors and the CG work vectors.
+struct BlockPCG::Workspace {
+  explicit Workspace(Preconditioner k) : kind(k) {}
+  void precondition(const std::vector<double>& in, std::vector<double>& out) const;
+  // Dot product as a sum of fixed-size chunks, added in chunk order: reproducible for any
+  // thread count.
+  double dot(const std::vector<double>& a, const std::vector<double>& b);
+
+  Preconditioner kind, active = Preconditioner::BlockJacobi;
+  std::vector<Mat6> inv_diag;
+  BlockIncompleteCholesky ic;
+  std::vector<double> r, z, p, q, partial;
+};
+
+BlockPCG::BlockPCG(Preconditioner kind) : w_(std::make_unique<Workspace>(kind)) {}
+BlockPCG::~BlockPCG() = default;
+BlockPCG::BlockPCG(BlockPCG&&) noexcept = default;
+BlockPCG& BlockPCG::operator=(BlockPCG&&) noexcept = default;
+Preconditioner BlockPCG::active() const {
+  return w_->active;
+}
+
 void BlockPCG::prepare(const BlockSparseMatrix& A) {
+  Workspace& w = *w_;
   const std::size_t n = A.blocks();
-  r_.resize(6 * n);
-  z_.resize(6 * n);
-  p_.resize(6 * n);
-  q_.resize(6 * n);
-  partial_.resize((6 * n + kChunk - 1) / kChunk);
-  if (kind_ == Preconditioner::IncompleteCholesky && ic_.factorize(A)) {
-    active_ = Preconditioner::IncompleteCholesky;
+  w.r.resize(6 * n);
+  w.z.resize(6 * n);
+  w.p.resize(6 * n);
+  w.q.resize(6 * n);
+  w.partial.resize((6 * n + kChunk - 1) / kChunk);
+  if (w.kind == Preconditioner::IncompleteCholesky && w.ic.factorize(A)) {
+    w.active = Preconditioner::IncompleteCholesky;
     return;
   }
-  active_ = Preconditioner::BlockJacobi;
-  inv_diag_.resize(n);
+  w.active = Preconditioner::BlockJacobi;
+  w.inv_diag.resize(n);
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < std::int64_t(n); ++i) {
     // Diagonal blocks of an SPD matrix are SPD: invert through their Cholesky factor.
     Eigen::LLT<Mat6> llt(A.diagonal(std::size_t(i)));
-    inv_diag_[i] = llt.solve(Mat6::Identity());
+    w.inv_diag[i] = llt.solve(Mat6::Identity());
   }
 }
 
-double BlockPCG::dot(const std::vector<double>& a, const std::vector<double>& b) {
+double BlockPCG::Workspace::dot(const std::vector<double>& a, const std::vector<double>& b) {
   const std::size_t m = a.size();
-  const std::int64_t chunks = std::int64_t(partial_.size());
+  const std::int64_t chunks = std::int64_t(partial.size());
 #pragma omp parallel for schedule(static)
   for (std::int64_t c = 0; c < chunks; ++c) {
     double s = 0.0;
-    for (std::size_t k = std::size_t(c) * kChunk, end = std::min(m, k + kChunk); k < end; ++k) s += a[k] * b[k];
-    partial_[c] = s;
+    for (std::size_t k = std::size_t(c) * kChunk, end = std::min(m, k + kChunk); k < end; ++k)
+      s += a[k] * b[k];
+    partial[c] = s;
   }
   double s = 0.0;
-  for (const double v : partial_) s += v;
+  for (const double v : partial) s += v;
   return s;
 }
 
-void BlockPCG::precondition(const std::vector<double>& in, std::vector<double>& out) const {
-  if (active_ == Preconditioner::IncompleteCholesky) {
-    ic_.apply(in.data(), out.data());
+void BlockPCG::Workspace::precondition(const std::vector<double>& in, std::vector<double>& out) const {
+  if (active == Preconditioner::IncompleteCholesky) {
+    ic.apply(in.data(), out.data());
     return;
   }
-  const std::int64_t n = std::int64_t(inv_diag_.size());
+  const std::int64_t n = std::int64_t(inv_diag.size());
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < n; ++i)
-    Eigen::Map<Vec6>(out.data() + 6 * i) = inv_diag_[i] * Eigen::Map<const Vec6>(in.data() + 6 * i);
+    Eigen::Map<Vec6>(out.data() + 6 * i) = inv_diag[i] * Eigen::Map<const Vec6>(in.data() + 6 * i);
 }
 
 BlockPCG::Result BlockPCG::solve(const BlockSparseMatrix& A, const double* b, double* x, double tolerance,
                                  int max_iterations) {
+  Workspace& w = *w_;
+  std::vector<double>&r_ = w.r, &z_ = w.z, &p_ = w.p, &q_ = w.q;
   const std::int64_t m = std::int64_t(6 * A.blocks());
   Result result;
   A.multiply(x, q_.data());
@@ -65,38 +92,38 @@ BlockPCG::Result BlockPCG::solve(const BlockSparseMatrix& A, const double* b, do
     r_[k] = b[k] - q_[k];
     z_[k] = b[k];
   }
-  const double bnorm = std::sqrt(dot(z_, z_));
+  const double bnorm = std::sqrt(w.dot(z_, z_));
   if (bnorm == 0.0) {
     std::fill(x, x + m, 0.0);
     result.converged = true;
     return result;
   }
-  double rnorm = std::sqrt(dot(r_, r_));
+  double rnorm = std::sqrt(w.dot(r_, r_));
   result.relative_residual = rnorm / bnorm;
   if (result.relative_residual <= tolerance) {
     result.converged = true;
     return result;
   }
-  precondition(r_, z_);
+  w.precondition(r_, z_);
   p_ = z_;
-  double rz = dot(r_, z_);
+  double rz = w.dot(r_, z_);
   for (int it = 1; it <= max_iterations; ++it) {
     A.multiply(p_.data(), q_.data());
-    const double alpha = rz / dot(p_, q_);
+    const double alpha = rz / w.dot(p_, q_);
 #pragma omp parallel for schedule(static)
     for (std::int64_t k = 0; k < m; ++k) {
       x[k] += alpha * p_[k];
       r_[k] -= alpha * q_[k];
     }
-    rnorm = std::sqrt(dot(r_, r_));
+    rnorm = std::sqrt(w.dot(r_, r_));
     result.iterations = it;
     result.relative_residual = rnorm / bnorm;
     if (result.relative_residual <= tolerance) {
       result.converged = true;
       return result;
     }
-    precondition(r_, z_);
-    const double rz_new = dot(r_, z_);
+    w.precondition(r_, z_);
+    const double rz_new = w.dot(r_, z_);
     const double beta = rz_new / rz;
     rz = rz_new;
 #pragma omp parallel for schedule(static)

@@ -12,6 +12,17 @@
 namespace fldsim {
 namespace {
 
+// Paths are relative to where they are written: a path in the experiment file to the file's
+// directory (so an experiment runs the same from any directory), one given on the command line
+// (--set KEY=PATH) to the current directory, like every other command-line path.
+std::string resolve_path(const std::string& path, const std::string& yaml_dir, const std::string& key,
+                         const std::vector<std::string>& overrides) {
+  if (path.empty() || std::filesystem::path(path).is_absolute() || yaml_dir.empty()) return path;
+  for (const auto& item : overrides)
+    if (item.rfind(key + "=", 0) == 0) return path;
+  return (std::filesystem::path(yaml_dir) / path).lexically_normal().string();
+}
+
 const std::vector<std::string> kTopKeys = {"system", "flow",      "hydro",  "forces",
                                            "run",    "observers", "output", "plugins"};
 
@@ -98,6 +109,10 @@ ParamSchema run_schema() {
       .greater(0.0);
   s.number("checkpoint_every", 0.0, "time_unit", "write a checkpoint this often (0 = only at the end)")
       .at_least(0.0);
+  s.choice("progress", "auto", {"auto", "on", "off"},
+           "progress lines on stderr (the `progress` observer with its defaults): auto = on for runs of "
+           "1000 steps (with dt: auto, frames of dt_max) or more; off also by -q; an experiment listing "
+           "`progress` itself uses that");
   s.integer("threads", 0, "",
             "OpenMP threads; 0 = automatic: OMP_NUM_THREADS if set, else the idle usable cores, at most one "
             "per 2000 bodies, kept after the first 13 steps only if measurably faster than one thread "
@@ -269,7 +284,7 @@ Experiment read_experiment(const std::string& file, const std::vector<std::strin
       ex.init_sweeps = ip.integer("sweeps");
       ex.init_positions = ip.table("positions");
       ex.init_orientations = ip.table("orientations");
-      ex.init_file = ip.text("file");
+      ex.init_file = resolve_path(ip.text("file"), dir, "system.init.file", overrides);
       if (ex.init_method == "explicit" && ex.init_positions.empty())
         errors.add(init, "system.init.positions", "method explicit needs a list of positions");
       if (ex.init_method == "file" && ex.init_file.empty())
@@ -349,6 +364,7 @@ Experiment read_experiment(const std::string& file, const std::vector<std::strin
     ex.skin = rp.number("skin");
     ex.checkpoint_every = rp.number("checkpoint_every");
     ex.threads = rp.integer("threads");
+    ex.progress = rp.text("progress");
   }
   if (ex.dt > 0 && ex.duration > 0 && ex.dt > ex.duration)
     errors.add(ex.dt_auto ? run["dt_max"] : run["dt"], ex.dt_auto ? "run.dt_max" : "run.dt",
@@ -374,7 +390,7 @@ Experiment read_experiment(const std::string& file, const std::vector<std::strin
     if (!out.IsScalar())
       errors.add(out, "output", "expected a file name, got " + describe_yaml_value(out));
     else
-      ex.output = out.as<std::string>();
+      ex.output = resolve_path(out.as<std::string>(), dir, "output", overrides);
   }
   errors.throw_if_any();
   return ex;

@@ -61,6 +61,7 @@ struct Experiment {
   double skin = 0.3;
   double checkpoint_every = 0.0;  // in time_unit; 0 = only at the end
   std::int64_t threads = 0;
+  std::string progress = "auto";  // auto | on | off: a default `progress` observer (RunExperiment)
 
   std::string output;
 };

@@ -1,11 +1,15 @@
 #include "run/RunExperiment.hpp"
 
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iomanip>
 #include <ostream>
 #include <sstream>
 
+#include "config/YamlValidation.hpp"
 #include "io/Checkpoint.hpp"
 #include "io/Hdf5ResultSink.hpp"
 #include "run/Provenance.hpp"
@@ -14,6 +18,30 @@
 
 namespace fldsim {
 namespace {
+
+// Runs of this many steps (frames of dt_max with dt: auto) or more report progress unless told
+// not to (run.progress, -q): a silent run of minutes looks hung.
+constexpr std::int64_t kProgressSteps = 1000;
+
+// The experiment with a `progress` observer (default parameters) appended when run.progress
+// asks for one and the file lists none.
+Experiment with_default_progress(const Experiment& ex, const PluginRegistry& registry, bool quiet) {
+  const bool listed = std::any_of(ex.observers.begin(), ex.observers.end(),
+                                  [](const ObserverBlock& o) { return o.plugin.name == "progress"; });
+  const bool long_run = ex.dt > 0 && std::llround(ex.duration / ex.dt) >= kProgressSteps;
+  if (listed || quiet || ex.progress == "off" || (ex.progress == "auto" && !long_run)) return ex;
+  Experiment out = ex;
+  ConfigErrors errors(ex.file);
+  PluginBlock block;
+  block.kind = "observer";
+  block.name = "progress";
+  block.path = "run.progress";
+  block.params = validate_params(YAML::Node(YAML::NodeType::Map),
+                                 registry.find("observer", "progress").schema, block.path, errors);
+  errors.throw_if_any();
+  out.observers.push_back(ObserverBlock{std::move(block), 1, 0.0});
+  return out;
+}
 
 std::string format_time(double seconds) {
   std::ostringstream s;
@@ -32,7 +60,7 @@ int run_experiment(const Experiment& ex, const PluginRegistry& registry, const R
   Hdf5ResultSink sink(output, opt.overwrite);
   const UserTimeUnit unit = user_time_unit(ex, physics_of(ex));  // before begin() writes a frame
   sink.set_time_unit(unit.name, unit.scale);
-  Experiment run = ex;
+  Experiment run = with_default_progress(ex, registry, opt.quiet);
   run.output = output;
   Checkpoint resume;
   if (!opt.resume.empty()) resume = read_checkpoint(opt.resume);

@@ -68,6 +68,7 @@ SimulationParts build_parts(const Experiment& ex, const PluginRegistry& registry
     parts.observers.push_back(ob);
     parts.observer_keys.push_back("observers[" + std::to_string(i) + "]." + o.plugin.name);
   }
+  check_observer_needs(ex, *parts.hydro, parts.observers);
 
   if (resume) {
     if (resume->experiment_yaml != ex.resolved_yaml)
@@ -105,6 +106,16 @@ SimulationSettings settings_of(const Experiment& ex, const UserTimeUnit& unit, T
 
 }  // namespace
 
+void check_observer_needs(const Experiment& ex, const HydroModel& hydro,
+                          const std::vector<std::shared_ptr<Observer>>& observers) {
+  for (std::size_t i = 0; i < observers.size() && i < ex.observers.size(); ++i)
+    if (observers[i]->needs().stress && !hydro.provides_stresslets())
+      ex.observers[i].plugin.params.fail(
+          "plugin", "observer '" + ex.observers[i].plugin.name +
+                        "' needs the hydrodynamic stresslets, which hydro plugin '" + ex.hydro.name +
+                        "' does not provide (HydroModel::provides_stresslets)");
+}
+
 std::unique_ptr<Simulation> Simulation::from_experiment(const Experiment& ex, const PluginRegistry& registry,
                                                         ResultSink& sink, std::ostream& log,
                                                         const Checkpoint* resume,
@@ -130,7 +141,15 @@ Simulation::Simulation(SimulationParts parts, SimulationSettings settings, Resul
       system_(parts_.system.get()) {
   System& sys = *system_;
   bool need_stress = false;
-  for (const auto& o : parts_.observers) need_stress = need_stress || o->needs().stress;
+  for (std::size_t i = 0; i < parts_.observers.size(); ++i) {
+    if (!parts_.observers[i]->needs().stress) continue;
+    need_stress = true;
+    // Refused before any work: a hydrodynamic stress of zero would look like a result.
+    if (!parts_.hydro->provides_stresslets())
+      throw ConfigError(parts_.observer_keys[i] +
+                        ": needs the hydrodynamic stresslets, which hydro plugin '" + parts_.hydro_name +
+                        "' does not provide (HydroModel::provides_stresslets)");
+  }
 
   range_ = parts_.hydro->pair_range(sys);
   for (const auto& f : parts_.forces) range_ = std::max(range_, f->range(sys));

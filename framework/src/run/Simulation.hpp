@@ -42,6 +42,13 @@ struct SimulationParts {
   std::vector<std::string> observer_keys;
 };
 
+// Refuses an observer whose needs the hydro model cannot meet (a `stress` observer with a model
+// that provides no stresslets) with a ConfigError "file:line:col: observers[i].plugin: ...".
+// observers[i] is the plugin of ex.observers[i]. `fldsim check` makes it, and a run makes it
+// before placing its bodies (a Monte Carlo start can take minutes).
+void check_observer_needs(const Experiment& ex, const HydroModel& hydro,
+                          const std::vector<std::shared_ptr<Observer>>& observers);
+
 // How the parts are stepped.
 struct SimulationSettings {
   double dt = 0.0;                   // the frame, internal time units (a^2/D0); dt_max with dt: auto

@@ -56,6 +56,7 @@ class ResistanceModel : public HydroModel {
                       double* FB) override;
   void solve(const System& system, const double* F, double* dU) override;
   SolveStats last_solve() const override { return stats_; }
+  bool provides_stresslets() const override { return true; }
   Eigen::Matrix3d stresslet_sum(const System& system, const NodePairList& pairs, const double* dU) override;
 
   // For tests: the assembled R_FU and R_FE:E_inf.

@@ -1,0 +1,71 @@
+// Block incomplete Cholesky IC(0) of a BlockSparseMatrix: the core's default CG preconditioner.
+// Core-private (not part of the plugin API): BlockPCG holds it behind a pointer.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "fldsim/block_sparse.hpp"
+
+namespace fldsim {
+
+// Block incomplete Cholesky IC(0): A ~ U^T U with U block upper triangular on A's own pattern
+// (fill outside it is dropped). Exact for an isolated pair of bodies, so it removes the 1/gap
+// squeeze coupling of near-contact pairs that block Jacobi leaves to the iterations. Applying it
+// is two block triangular sweeps (about one matrix-vector product). Both the factorisation and the
+// sweeps are row-oriented ("gather": row i reads only finished rows), scheduled by dependency
+// levels computed once per pattern: rows of one level are independent and run in parallel, a
+// thread waiting (per-row flags, no barrier between levels) only for the rows it reads, and
+// every row is summed in the same fixed order whatever the thread count, so the result does not
+// depend on it. If a pivot block is not positive definite (IC(0) of a general SPD matrix can break
+// down) factorize() returns false and the caller falls back to block Jacobi.
+class FLDSIM_VISIBLE BlockIncompleteCholesky {
+ public:
+  bool factorize(const BlockSparseMatrix& A);
+  // z = (U^T U)^-1 r.
+  void apply(const double* r, double* z) const;
+  // Dependency levels of the forward and backward sweeps (each level is one parallel step).
+  std::size_t forward_levels() const { return forward_.levels(); }
+  std::size_t backward_levels() const { return backward_.levels(); }
+
+ private:
+  // Rows row[level_start[l]] .. row[level_start[l+1] - 1] form level l, ascending within it.
+  struct Levels {
+    std::vector<std::int64_t> level_start;
+    std::vector<std::uint32_t> row;
+    std::size_t levels() const { return level_start.empty() ? 0 : level_start.size() - 1; }
+  };
+  void analyse(const BlockSparseMatrix& A);
+  bool factor_row(const BlockSparseMatrix& A, std::size_t i);
+  void forward_row(std::size_t i, const double* r, double* z) const;
+  void backward_row(std::size_t i, double* z) const;
+
+  std::uint64_t pattern_id_ = 0;
+  // A's upper pattern by rows and its transposed index (see BlockSparseMatrix).
+  std::vector<std::int64_t> row_start_, col_start_, by_col_;
+  std::vector<std::uint32_t> col_, by_col_row_;
+  Levels forward_, backward_;
+  // The factorisation runs in double: inv_lower_ = (U_ii^T)^-1 (lower triangular) and upper_ =
+  // U_ij (i < j, laid out as A's upper blocks).
+  std::vector<Mat6> inv_lower_, upper_;
+  // The sweeps read single-precision copies: they are memory-bound, and a rounded factor is still
+  // an exact U^T U of a slightly different U, so the preconditioner stays symmetric positive
+  // definite and CG's accuracy (set by the double-precision residual) is unchanged.
+  using Mat6f = Eigen::Matrix<float, 6, 6>;
+  std::vector<Mat6f> pivot_f_, upper_f_;
+  std::vector<Mat6f> lower_f_;  // upper_f_ in the transposed index's order (by_col); threads > 1
+  bool gathered_ = false;       // lower_f_ holds the current factor
+  // Multi-threaded factorisation and sweeps: done_[i] is the epoch of the last pass (factorisation,
+  // forward or backward sweep) that finished row i; each pass has a larger epoch than the last.
+  std::atomic<std::uint64_t>* done_flags(std::size_t n) const;
+  mutable std::unique_ptr<std::atomic<std::uint64_t>[]> done_;
+  mutable std::size_t done_size_ = 0;
+  mutable std::uint64_t epoch_ = 0;
+  // analyse() scratch, kept so that a pattern change does not allocate.
+  std::vector<std::uint32_t> level_scratch_;
+  std::vector<std::int64_t> fill_scratch_;
+};
+
+}  // namespace fldsim
