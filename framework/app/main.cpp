@@ -49,7 +49,7 @@ const char* kRunHelp =
     "                          --set flow.peclet=10 --set system.shape.c=1 --set observers[1].every=50\n"
     "                          (repeatable; sweeps; list entries also as observers.1.every)\n"
     "  --resume CHECKPOINT     continue a run exactly from OUT.h5.checkpoint\n"
-    "  -q, --quiet             no log on stderr except errors\n"
+    "  -q, --quiet             nothing on stderr except errors (no log, no progress lines)\n"
     "\n"
     "The result file is written as OUT.h5.part and renamed to OUT.h5 when the run ends; a\n"
     "checkpoint OUT.h5.checkpoint is written every run.checkpoint_every and at the end.\n"
@@ -99,6 +99,26 @@ int usage_error(const std::string& message, const char* help) {
   std::cerr << "fldsim: " << message << "\n\n" << help;
   return 2;
 }
+
+// -q: nothing on stderr but errors while the run lasts, including what plugins print there (a
+// `progress` observer listed in the experiment); restored before main() prints an error.
+class SilencedStderr {
+ public:
+  explicit SilencedStderr(bool silence)
+      : saved_(silence ? std::cerr.rdbuf(nullptr) : nullptr), active_(silence) {}
+  ~SilencedStderr() {
+    if (active_) {
+      std::cerr.rdbuf(saved_);
+      std::cerr.clear();
+    }
+  }
+  SilencedStderr(const SilencedStderr&) = delete;
+  SilencedStderr& operator=(const SilencedStderr&) = delete;
+
+ private:
+  std::streambuf* saved_;
+  bool active_;
+};
 
 int cmd_run(const std::vector<std::string>& args, bool check_only) {
   std::string file;
@@ -151,6 +171,7 @@ int cmd_run(const std::vector<std::string>& args, bool check_only) {
     return 0;
   }
   std::ostream null_stream(nullptr);
+  const SilencedStderr silenced(opt.quiet);
   return fldsim::run_experiment(ex, *registry, opt, opt.quiet ? null_stream : std::cerr);
 }
 

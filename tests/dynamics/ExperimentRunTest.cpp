@@ -164,6 +164,17 @@ TEST(ExperimentRun, LongRunsReportProgressUnlessTurnedOff) {
   const Command asked = run("run " + (d / "short.yaml").string() + " --overwrite --set run.progress=on");
   ASSERT_EQ(asked.code, 0) << asked.output;
   EXPECT_NE(asked.output.find("progress: 500 steps"), std::string::npos) << asked.output;
+  // -q also silences a `progress` observer the experiment lists itself; errors still print.
+  write(d / "listed.yaml",
+        experiment((d / "listed.h5").string(), 0.5, "fld", "observers:\n  - {plugin: progress}\n"));
+  const Command listed = run("run " + (d / "listed.yaml").string());
+  EXPECT_NE(listed.output.find("progress: 500 steps"), std::string::npos) << listed.output;
+  const Command listed_quiet = run("run -q " + (d / "listed.yaml").string() + " --overwrite");
+  ASSERT_EQ(listed_quiet.code, 0) << listed_quiet.output;
+  EXPECT_EQ(listed_quiet.output, "");
+  const Command refused = run("run -q " + (d / "listed.yaml").string());
+  EXPECT_EQ(refused.code, 1);
+  EXPECT_NE(refused.output.find("refusing to overwrite"), std::string::npos) << refused.output;
 }
 
 // A check only the plugin can make (in its constructor) is made by `check` too, not first at `run`.
