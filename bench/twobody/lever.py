@@ -77,8 +77,8 @@ def doublet(c, xi, side_by_side, lever):
 def main():
     print("1. Sphere pair in rigid rotation (Omega = e_z, d = e_x, quiescent fluid): pair part of the\n"
           "   wrench (total minus isolated drag) on sphere 2: force F_y in 6 pi mu a Omega a, torque T_z in\n"
-          "   6 pi mu a^3 Omega, and the pair's share of the total torque about the midpoint (isolated drag\n"
-          "   in the last column).")
+          "   6 pi mu a^3 Omega; 'total': the pair part of the pair's torque about its midpoint, against the\n"
+          "   isolated drag's (last column).")
     print("| r/a | exact F_y | exact T_z | exact total | centre lever | contact F_y | contact T_z | contact total | isolated total |")
     print("|---|---|---|---|---|---|---|---|---|")
     for s in (2.001, 2.01, 2.05, 2.1, 2.2, 2.3, 2.4, 2.49):
@@ -96,7 +96,8 @@ def main():
             for xi in (0.01, 0.1, 0.3, 0.49):
                 t_c, iso = doublet(c, xi, side, "centre")
                 t_k, _ = doublet(c, xi, side, "contact")
-                print(f"| {c} | {'side by side' if side else 'end to end'} | {xi} | {t_c / iso:+.2e} | {t_k / iso:+.2e} |")
+                centre = "0" if abs(t_c / iso) < 1e-12 else f"{t_c / iso:+.2e}"
+                print(f"| {c} | {'side by side' if side else 'end to end'} | {xi} | {centre} | {t_k / iso:+.2e} |")
 
 
 if __name__ == "__main__":

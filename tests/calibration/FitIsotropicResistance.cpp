@@ -6,8 +6,8 @@
 //   d_r = 1 - 0.631 phi - 0.726 phi^2                  (Cichocki, Ekiel-Jezewska & Wajnryb 1999;
 //         §1c),
 // (the second is reported, not fitted: see rotation_factor), then least-squares fits
-// f_t = 1 + c1 phi + c2 phi^2 through the points (f(0) = 1: an isolated sphere has Stokes drag). The
-// estimator is that of tests/dynamics/SelfDiffusivityTest.cpp:
+// f_t = 1 + c1 phi + c2 phi^2 + c3 phi^3 through the points (f(0) = 1: an isolated sphere has Stokes drag).
+// The estimator is that of tests/dynamics/SelfDiffusivityTest.cpp:
 // <|U_i|^2> dt/6 over bodies, Brownian draws and Monte Carlo configurations, with the draws and
 // configurations held fixed while the factors change (common random numbers), so d(f_t, f_r) is a
 // smooth function and a Newton iteration converges in a few steps.
@@ -153,16 +153,22 @@ double fit_translation(DiffusivityProbe& probe, double target, double f_t, doubl
   return f_t;
 }
 
-// Least squares f - 1 = c1 phi + c2 phi^2.
-Eigen::Vector2d fit_quadratic(const std::vector<double>& phi, const std::vector<double>& f) {
-  Eigen::MatrixXd A(phi.size(), 2);
+// Least squares f - 1 = c1 phi + c2 phi^2 + c3 phi^3 (a cubic: with the smooth taper f_t first rises
+// and then falls, which a quadratic through f(0) = 1 misses by 6 % at phi = 0.1).
+Eigen::Vector3d fit_cubic(const std::vector<double>& phi, const std::vector<double>& f) {
+  Eigen::MatrixXd A(phi.size(), 3);
   Eigen::VectorXd b(phi.size());
   for (std::size_t i = 0; i < phi.size(); ++i) {
     A(i, 0) = phi[i];
     A(i, 1) = phi[i] * phi[i];
+    A(i, 2) = phi[i] * phi[i] * phi[i];
     b[i] = f[i] - 1.0;
   }
   return A.colPivHouseholderQr().solve(b);
+}
+
+double cubic(const Eigen::Vector3d& c, double phi) {
+  return 1.0 + phi * (c[0] + phi * (c[1] + phi * c[2]));
 }
 
 int run(int argc, char** argv) {
@@ -194,17 +200,20 @@ int run(int argc, char** argv) {
                 e1, target_viscosity(phi), fs.back());
     std::fflush(stdout);
   }
-  const Eigen::Vector2d ct = fit_quadratic(phis, ft);
-  const Eigen::Vector2d cs = fit_quadratic(phis, fs);
-  std::printf("\nfit: f_t = 1 + %.4f phi + %.4f phi^2, f_s = 1 + %.4f phi + %.4f phi^2 (f_r: Kumar & Higdon)\n",
-              ct[0], ct[1], cs[0], cs[1]);
+  const Eigen::Vector3d ct = fit_cubic(phis, ft);
+  const Eigen::Vector3d cs = fit_cubic(phis, fs);
+  std::printf(
+      "\nfit: f_t = 1 + %.4f phi + %.4f phi^2 + %.4f phi^3, f_s = 1 + %.4f phi + %.4f phi^2 + %.4f phi^3 "
+      "(f_r: Kumar & Higdon)\n",
+      ct[0], ct[1], ct[2], cs[0], cs[1], cs[2]);
 
   // Validation on configurations and draws not used for the fit.
-  std::printf("\nvalidation (new configurations):\n phi    d_s     target  d_r     target  eta'_inf target\n");
+  std::printf(
+      "\nvalidation (new configurations):\n phi    d_s     target  d_r     target  eta'_inf target\n");
   for (double phi : phis) {
     DiffusivityProbe probe(phi, n, configurations, draws, base, 5000);
-    const double t = 1.0 + ct[0] * phi + ct[1] * phi * phi;
-    const double fsv = 1.0 + cs[0] * phi + cs[1] * phi * phi;
+    const double t = cubic(ct, phi);
+    const double fsv = cubic(cs, phi);
     const Eigen::Vector2d d = probe.measure({t, rotation_factor(phi), fsv});
     const double eta = probe.high_frequency_viscosity({t, rotation_factor(phi), fsv});
     std::printf(" %.2f   %.4f  %.4f  %.4f  %.4f  %.4f   %.4f\n", phi, d[0], target_translation(phi), d[1],

@@ -9,6 +9,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iostream>
+#include <vector>
 
 #include "Scene.hpp"
 #include "geometry/HardBodyMonteCarlo.hpp"
@@ -87,6 +89,52 @@ TEST(SelfDiffusivity, FldRotationalAboveTranslationalAtPhi030And045) {
   for (double phi : {0.30, 0.45}) {
     const auto d = measure(phi, 343, 1, 4);
     EXPECT_GT(d.rotational, d.translational) << "phi " << phi;
+  }
+}
+
+// High-frequency viscosity eta'_inf: the hydrodynamic stress of hard-sphere configurations under a
+// sudden shear (no Brownian or interparticle stress), eta'_inf/eta = 1 + <S^H_xy>/(V mu gammadot),
+// against the fit of Riest et al. (Soft Matter 2015) to accelerated-SD data,
+// 1 + 2.5 phi (1 + S)/(1 - phi (1 + S)), S = phi (1 + 0.95 phi - 2.15 phi^2): 2.654 at phi = 0.3,
+// 5.661 at 0.45. fld's stresslet factor f_s was fitted to it (docs/fld-r0-fit.md; the cubic's
+// residual < 1 % at these phi); the tolerance is the issue's 5 %, which also covers the spread
+// between Monte Carlo configurations of 500 spheres (~1 %, the fit's validation on fresh ones).
+// Broken variant: Kumar & Higdon's f_s (the model before the refit) gives 3.08 and 7.20 (+16 %,
+// +27 %, issue 11) and fails.
+double high_frequency_viscosity(double phi, std::size_t n, int configurations) {
+  double sum = 0.0;
+  for (int c = 0; c < configurations; ++c) {
+    Physics ph;
+    ph.kT = 0.0;
+    ph.shear_rate = 1.0;
+    ph.volume_fraction = phi;
+    auto shape = make<Shape>("shape", "sphere");
+    const double edge = std::cbrt(double(n) * shape->volume() / phi);
+    Scene scene(shape, n, edge, ph);
+    geometry::MonteCarloOptions opt;
+    opt.seed = 300 + std::uint64_t(c);
+    geometry::initialise_monte_carlo(*scene.system, opt);
+    scene.finish(make<HydroModel>("hydro", "fld", "{tolerance: 1e-8}"), {}, HydroRequest{false, true, true});
+    HydroModel& hydro = *scene.hydro;
+    hydro.assemble(*scene.system, scene.list.pairs());
+    std::vector<double> F(6 * n, 0.0), dU(6 * n, 0.0);
+    hydro.solve(*scene.system, F.data(), dU.data());
+    const Eigen::Matrix3d S = hydro.stresslet_sum(*scene.system, scene.list.pairs(), dU.data());
+    sum += 1.0 + S(0, 1) / (scene.system->box().volume() * ph.viscosity * ph.shear_rate);
+  }
+  return sum / double(configurations);
+}
+
+double riest_viscosity(double phi) {
+  const double S = phi * (1.0 + 0.95 * phi - 2.15 * phi * phi);
+  return 1.0 + 2.5 * phi * (1.0 + S) / (1.0 - phi * (1.0 + S));
+}
+
+TEST(HighFrequencyViscosity, FldSpheresAtPhi030And045MatchRiest) {
+  for (double phi : {0.30, 0.45}) {
+    const double eta = high_frequency_viscosity(phi, 500, 2);
+    std::cout << "phi " << phi << ": eta'_inf = " << eta << " (Riest " << riest_viscosity(phi) << ")\n";
+    EXPECT_NEAR(eta / riest_viscosity(phi), 1.0, 0.05) << "phi " << phi;
   }
 }
 

@@ -25,10 +25,12 @@ Params defaults(const PluginInfo& info) {
 TEST(HydroPlugins, LoadAndGiveTheirIsolatedSphereMobility) {
   const PluginRegistry registry({FLDSIM_TEST_PLUGIN_DIR});
   // Translational resistance of one isolated unit sphere, in units of 6 pi mu a: 1 for
-  // free_draining and lubrication; for fld its default R_0 fit 1 + 0.5361 phi - 4.6621 phi^2 =
-  // 0.741527 at phi = 0.3 (docs/fld-r0-fit.md).
+  // free_draining and lubrication; for fld its default R_0 fit (smooth taper) at phi = 0.3,
+  // 1 + 0.3788 phi + 1.9794 phi^2 - 10.506 phi^3 (docs/fld-r0-fit.md).
   const std::pair<const char*, double> expected[] = {
-      {"free_draining", 1.0}, {"lubrication", 1.0}, {"fld", 1.0 + 0.5361 * 0.3 - 4.6621 * 0.09}};
+      {"free_draining", 1.0},
+      {"lubrication", 1.0},
+      {"fld", 1.0 + 0.3788 * 0.3 + 1.9794 * 0.09 - 10.506 * 0.027}};
   for (const auto& [name, resistance] : expected) {
     SCOPED_TRACE(name);
     const auto model = registry.create<HydroModel>("hydro", name, defaults(registry.find("hydro", name)));

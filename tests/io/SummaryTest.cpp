@@ -78,5 +78,31 @@ TEST(Summary, FileWithoutResultsIsAnError) {
   EXPECT_THROW(print_summary(dir.file("missing.h5"), out), Error);
 }
 
+TEST(Summary, FlagsAveragesWhoseBlockingFoundNoPlateau) {
+  // Issue 12: the file holds "no plateau reached" in the description of such an average
+  // (observers/common/ObserverOutput.hpp); summary marks the row and says what it means.
+  test::ScratchDir dir;
+  const std::string path = dir.file("run.h5");
+  {
+    Hdf5ResultSink sink(path, false);
+    sink.write_scalar("/results/orientation/delta_theta_m", -0.03, 0.004, "rad",
+                      "theta_m - 1 (mean over 40 samples; SE by Flyvbjerg-Petersen blocking, no plateau "
+                      "reached: SE is a lower bound)");
+    sink.write_scalar("/results/orientation/S_zz", 0.04, 0.002, "1",
+                      "order parameter (mean over 4000 samples; SE by Flyvbjerg-Petersen blocking)");
+    sink.commit();
+  }
+  std::ostringstream out;
+  EXPECT_EQ(print_summary(path, out), 0);
+  const std::string text = out.str();
+  auto line_of = [&](const std::string& key) {
+    const std::size_t at = text.find(key);
+    return at == std::string::npos ? std::string() : text.substr(at, text.find('\n', at) - at);
+  };
+  EXPECT_EQ(line_of("delta_theta_m").back(), '*') << text;
+  EXPECT_EQ(line_of("S_zz").find('*'), std::string::npos) << text;
+  EXPECT_NE(text.find("* 1 of 2: no plateau reached"), std::string::npos) << text;
+}
+
 }  // namespace
 }  // namespace fldsim

@@ -65,3 +65,18 @@ TEST(BlockAverage, ConstantSeriesHasZeroError) {
   EXPECT_DOUBLE_EQ(b.mean(), 2.5);
   EXPECT_DOUBLE_EQ(b.stderr_mean(), 0.0);
 }
+
+TEST(BlockAverage, CorrelationSamplesOfAr1AreTwiceTheIntegratedTime) {
+  // AR(1): statistical inefficiency s = n Var(mean) / var -> (1 + rho)/(1 - rho) = 2 tau_int + 1
+  // ... exactly 19 for rho = 0.9 (n large). s is SE^2 ratio, so its relative error is twice the
+  // SE's (< 2 x (2.3 % + 4 %) at the plateau, see above); 25 % is > 3 of that combined, and a
+  // variant that returns the SE ratio instead of its square (sqrt(19) = 4.4) fails it.
+  const double rho = 0.9;
+  const BlockAverage b = ar1(rho, std::size_t{1} << 18, 4242);
+  EXPECT_NEAR(b.correlation_samples() / ((1 + rho) / (1 - rho)), 1.0, 0.25);
+  // White noise: one sample per independent sample (10 %: the plateau level's error, see above).
+  EXPECT_NEAR(ar1(0.0, std::size_t{1} << 16, 99).correlation_samples(), 1.0, 0.2);
+  BlockAverage constant;
+  for (int i = 0; i < 64; ++i) constant.add(1.0);
+  EXPECT_TRUE(std::isnan(constant.correlation_samples()));
+}

@@ -21,7 +21,11 @@ std::string printf_string(const char* format, int precision, double x) {
 
 struct Row {
   std::string name, value, stderr_text, unit;
+  bool no_plateau = false;  // the observer's blocking found no plateau: the SE is a lower bound
 };
+
+// Observers write blocked averages with write_blocked(), which says so in the description.
+constexpr const char* kNoPlateau = "no plateau reached";
 
 void collect(const H5::Group& group, const std::string& prefix, std::vector<Row>& rows) {
   for (hsize_t i = 0; i < group.getNumObjs(); ++i) {
@@ -43,6 +47,8 @@ void collect(const H5::Group& group, const std::string& prefix, std::vector<Row>
     row.name = full;
     format_with_error(value, err, row.value, row.stderr_text);
     row.unit = d.attrExists("unit") ? io::read_string_attribute(d, "unit") : "";
+    row.no_plateau = d.attrExists("description") &&
+                     io::read_string_attribute(d, "description").find(kNoPlateau) != std::string::npos;
     rows.push_back(std::move(row));
   }
 }
@@ -104,6 +110,7 @@ int print_summary(const std::string& path, std::ostream& out) {
     std::string line = r.name + std::string(w[0] - r.name.size() + 2, ' ');
     line += std::string(w[1] - r.value.size(), ' ') + r.value + "  ";
     line += std::string(w[2] - r.stderr_text.size(), ' ') + r.stderr_text + "  " + r.unit;
+    if (r.no_plateau) line += std::string(w[3] - r.unit.size(), ' ') + "  *";
     while (!line.empty() && line.back() == ' ') line.pop_back();
     out << line << '\n';
   };
@@ -111,7 +118,15 @@ int print_summary(const std::string& path, std::ostream& out) {
       << " under /results\n";
   print(header);
   out << std::string(w[0] + w[1] + w[2] + w[3] + 6, '-') << '\n';
-  for (const auto& r : rows) print(r);
+  std::size_t flagged = 0;
+  for (const auto& r : rows) {
+    print(r);
+    flagged += r.no_plateau;
+  }
+  if (flagged)
+    out << "* " << flagged << " of " << rows.size()
+        << ": no plateau reached in the blocking analysis, so the SE is a lower bound: the run is "
+           "too short for it\n";
   return 0;
 }
 

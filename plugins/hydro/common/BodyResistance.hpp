@@ -36,8 +36,8 @@ class BodyResistance {
   void add_to(BlockSparseMatrix& A) const;
   // rhs += R_FE:E_inf of the pairs: -[S_i S_j]^T S_uj E L_ij, with the strain arm L_ij either
   // R_ij = X_j - X_i, the minimum-image centre separation (the relative ambient velocity of the two
-  // bodies once their velocities are taken relative to U_inf at the centres), or the contact
-  // distance (a_a + a_b) d of the node pair (LubricationOptions::strain_arm).
+  // bodies once their velocities are taken relative to U_inf at the centres), or R_ij less the
+  // node pair's gap along d, the contact distance for spheres (LubricationOptions::strain_arm).
   void add_strain_force(const Eigen::Matrix3d& E, double* rhs);
   // FB += scale * sum_p B_p beta_p, beta_p from the pair's own noise stream.
   void add_brownian(const RandomStream& noise, std::size_t nodes_per_body, double scale, double* FB);

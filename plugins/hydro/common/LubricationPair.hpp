@@ -31,9 +31,10 @@ enum class PumpForm { JeffreyOnishi, Lammps };
 // node radii as LAMMPS pair lubricateU does (Contact: l = a).
 enum class Lever { Centre, Contact };
 // Arm of the ambient strain seen by a pair (BodyResistance): the body-centre separation R_ij,
-// the relative motion of the two bodies in the imposed flow (Centre), or the contact distance
-// (a_i + a_j) d along the node pair, the fluid's relative velocity between the two contact points
-// as LAMMPS pair lubricateU uses it (Contact).
+// the relative motion of the two bodies in the imposed flow (Centre), or that arm shortened by the
+// node pair's gap, R_ij - (r - a_i - a_j) d (Contact): for spheres the contact distance
+// (a_i + a_j) d, the fluid's relative velocity between the two contact points as LAMMPS pair
+// lubricateU uses it.
 enum class StrainArm { Centre, Contact };
 
 struct LubricationOptions {
@@ -41,7 +42,7 @@ struct LubricationOptions {
   PumpForm pump = PumpForm::JeffreyOnishi;
   bool twist = true;
   Lever lever = Lever::Centre;
-  StrainArm strain_arm = StrainArm::Centre;
+  StrainArm strain_arm = StrainArm::Contact;  // docs/two-body.md: closer to the exact A, B, C
   double cutoff = 2.5;       // node centre distance (in abar) where pairs end
   double taper_width = 0.0;  // 0: abrupt cutoff; else coefficients go to zero over [cutoff - w, cutoff]
 };

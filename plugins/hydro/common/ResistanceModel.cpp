@@ -10,14 +10,22 @@
 namespace fldsim::hydro {
 
 namespace {
-// Coefficients of fldsim's R_0(phi) fit, f = 1 + c1 phi + c2 phi^2 (see isotropic_factors).
-struct FitCoefficients {
-  double t1, t2, r1, r2;
-};
+// Coefficients of fldsim's R_0(phi) fits (see isotropic_factors).
 // f_t from tests/calibration/FitIsotropicResistance.cpp (N = 500, 3 configurations x 16 draws per
 // phi, Newton to |d_s - target| < 2e-4 at phi = 0.1 ... 0.5); f_r is Kumar & Higdon's (fitting it
 // to d_r drives it to zero by phi = 0.4, see docs/fld-r0-fit.md).
-constexpr FitCoefficients kFldsimFit{0.5361, -4.6621, 0.749, -2.469};
+// f_t and f_s as cubics 1 + c1 phi + c2 phi^2 + c3 phi^3 (a quadratic through f(0) = 1 misses the
+// tapered f_t, which first rises, by 4 %); f_r quadratic.
+struct FldsimFit {
+  double t1, t2, t3;  // f_t
+  double r1, r2;      // f_r
+  double s1, s2, s3;  // f_s
+};
+// The abrupt cutoff (taper: none): f_t refitted, f_s Kumar & Higdon's (never refitted for it).
+constexpr FldsimFit kFldsimFitAbrupt{0.5361, -4.6621, 0.0, 0.749, -2.469, 3.64, -6.95, 0.0};
+// The default smooth taper (width kDefaultTaperWidth) and contact strain arm: f_t to d_s and f_s
+// to Riest et al.'s high-frequency viscosity eta'_inf (docs/fld-r0-fit.md).
+constexpr FldsimFit kFldsimFitTapered{0.3788, 1.9794, -10.5060, 0.749, -2.469, 0.7956, 6.3030, -17.2213};
 // Width of the default smooth taper, in a (chosen by measurement: docs/lubrication-taper.md).
 constexpr double kDefaultTaperWidth = 0.3;
 }  // namespace
@@ -31,11 +39,12 @@ void describe_lubrication_params(ParamSchema& s) {
            "node centre distance below which a node pair is lubricated (scaled by the mean radius)")
       .greater(2.0)
       .less(3.0);
-  s.choice("taper", std::string("none"), {"smooth", "none"},
-           "switch-off of the pair terms below the cutoff: smooth (C2, over taper_width; continuous "
-           "mobility, exact equilibrium) or none (abrupt: a mobility jump at the cutoff; "
-           "docs/lubrication-taper.md)");
-  s.number("taper_width", kDefaultTaperWidth, "a", "width of the smooth taper below the cutoff")
+  s.choice("taper", std::string("smooth"), {"smooth", "none"},
+           "switch-off of the pair terms below the cutoff: smooth (C2 over taper_width: the mobility is "
+           "continuous, so the thermal drift sees no jump) or none (abrupt, as LAMMPS: a mobility jump at "
+           "the cutoff that distorts g(r) there by -18 %..+5 %; docs/lubrication-taper.md)");
+  s.number("taper_width", kDefaultTaperWidth, "a",
+           "width of the smooth taper below the cutoff (fld's r0_fit fldsim is calibrated at the default)")
       .greater(0.0)
       .at_most(0.5);
   s.number("delta_num", 1e-5, "a", "gaps below this are evaluated at this gap").greater(0.0).less(0.1);
@@ -45,10 +54,10 @@ void describe_lubrication_params(ParamSchema& s) {
   s.choice("lever", std::string("centre"), {"centre", "contact"},
            "shear-mode lever arms: centre (r a_i/(a_i+a_j), sums to r: rigid rotation is force-free) "
            "or contact (the node radii, as LAMMPS); docs/two-body.md");
-  s.choice(
-      "strain_arm", std::string("centre"), {"centre", "contact"},
-      "ambient strain seen by a pair: E R_ij with the body-centre separation (the bodies' relative "
-      "motion in the imposed flow) or E (a_i+a_j) d, the contact distance (as LAMMPS); docs/two-body.md");
+  s.choice("strain_arm", std::string("contact"), {"centre", "contact"},
+           "ambient strain seen by a pair: contact, the body-centre separation less the node gap (for "
+           "spheres the contact distance (a_i+a_j) d, as LAMMPS; closer to the exact two-sphere A, B, C), "
+           "or centre, E R_ij with the body-centre separation; docs/two-body.md");
   s.number("tolerance", 1e-6, "", "relative residual of the conjugate-gradient solve").greater(0.0).less(1.0);
   s.integer("max_iterations", 1000L, "", "conjugate-gradient iteration limit").at_least(1);
   s.choice("preconditioner", std::string("incomplete_cholesky"), {"incomplete_cholesky", "block_jacobi"},
@@ -93,7 +102,7 @@ ModelSettings read_lubrication_params(const Params& p) {
   return s;
 }
 
-IsotropicFactors isotropic_factors(IsotropicFit fit, double phi) {
+IsotropicFactors isotropic_factors(IsotropicFit fit, double phi, bool tapered) {
   switch (fit) {
     case IsotropicFit::None:
       return {};
@@ -105,10 +114,15 @@ IsotropicFactors isotropic_factors(IsotropicFit fit, double phi) {
       // Refit for fldsim's Jeffrey-Onishi forms (pump 3/40, twist, cutoff 2.5 a), so that hard-sphere
       // suspensions reproduce d_s = 1 - 1.8315 phi (1 + 0.12 phi - 0.70 phi^2) (Riest et al. 2015)
       // at phi = 0.1 ... 0.5 within 0.01; calibrated for phi <= 0.5 (f_t reaches 0 at phi = 0.52).
-      // The rotational and stresslet factors are Kumar & Higdon's. Method and residuals:
-      // docs/fld-r0-fit.md.
-      return {1.0 + kFldsimFit.t1 * phi + kFldsimFit.t2 * phi * phi,
-              1.0 + kFldsimFit.r1 * phi + kFldsimFit.r2 * phi * phi, 1.0 + 3.64 * phi - 6.95 * phi * phi};
+      // The rotational factor is Kumar & Higdon's; with the taper the stresslet factor is fitted to
+      // eta'_inf as well. Separate fits for the two cutoff forms: the taper removes resistance between
+      // 2.2 and 2.5 a that R_0 must then supply. Method and residuals: docs/fld-r0-fit.md.
+      {
+        const FldsimFit& c = tapered ? kFldsimFitTapered : kFldsimFitAbrupt;
+        const double p2 = phi * phi, p3 = p2 * phi;
+        return {1.0 + c.t1 * phi + c.t2 * p2 + c.t3 * p3, 1.0 + c.r1 * phi + c.r2 * p2,
+                1.0 + c.s1 * phi + c.s2 * p2 + c.s3 * p3};
+      }
   }
   return {};
 }
@@ -127,7 +141,8 @@ std::vector<std::string> ResistanceModel::configure(const System& system, const 
   E_(0, 1) = E_(1, 0) = 0.5 * gd;  // u = gammadot y e_x: E = sym(grad u)
   const IsotropicFactors f = settings_.fixed_factors
                                  ? *settings_.fixed_factors
-                                 : isotropic_factors(settings_.fit, system.physics().volume_fraction);
+                                 : isotropic_factors(settings_.fit, system.physics().volume_fraction,
+                                                     settings_.lub.taper_width > 0.0);
   if (f.translation <= 0.0 || f.rotation <= 0.0)
     throw Error("hydro: the R_0(phi) fit (calibrated for phi <= 0.5) is not positive at phi = " +
                 number_text(system.physics().volume_fraction));

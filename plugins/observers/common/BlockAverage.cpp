@@ -55,6 +55,14 @@ double BlockAverage::stderr_mean() const {
   return best;
 }
 
+double BlockAverage::correlation_samples() const {
+  const auto lv = levels();
+  if (lv.empty() || lv.front().stderr_value <= 0.0) return std::numeric_limits<double>::quiet_NaN();
+  // Level 0 holds the naive SE^2 = var / (n - 1); the ratio of the variances is s.
+  const double ratio = stderr_mean() / lv.front().stderr_value;
+  return ratio * ratio;
+}
+
 bool BlockAverage::converged() const {
   const auto lv = levels();
   return !lv.empty() && plateau_level(lv) < lv.size();

@@ -44,6 +44,12 @@ class BlockAverage {
   double stderr_mean() const;
   // False when no plateau was found (the SE is then likely an underestimate).
   bool converged() const;
+  // Statistical inefficiency s = n SE^2 / var: the number of consecutive samples that carry the
+  // information of one independent sample, 2 tau_int for a slowly decaying autocorrelation
+  // (Flyvbjerg & Petersen 1989, eq. 32; Sokal, Monte Carlo methods in statistical mechanics
+  // (1996), eq. 2.20). 1 for white noise, a lower bound without a plateau; NaN for < 2 samples
+  // or a constant series.
+  double correlation_samples() const;
 
  private:
   std::size_t plateau_level(const std::vector<BlockingLevel>& lv) const;

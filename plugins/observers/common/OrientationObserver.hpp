@@ -28,6 +28,7 @@ class OrientationObserver : public Observer {
   bool skipped() const { return skipped_; }
 
  private:
+  void write_decorrelation_time(const RunInfo& run, ResultSink& out) const;
   OrientationConfig config_;
   OrientationStatistics stats_;
   std::vector<Vec3> directors_;

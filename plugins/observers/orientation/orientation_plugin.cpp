@@ -23,4 +23,5 @@ class OrientationPlugin : public fldsim::observers::OrientationObserver {
 }  // namespace
 
 FLDSIM_PLUGIN(observer, OrientationPlugin, "orientation", "1.0.0",
-              "P(theta), P(phi), theta_m, phi_m, S_ii and the order tensor of the directors")
+              "P(theta), P(phi), theta_m, phi_m, S_ii, the order tensor of the directors and the "
+              "decorrelation_time of their averages (is the run long enough?)")
