@@ -37,9 +37,10 @@ CONSISTENT_SE = 2.0
 def last_frame(h5):
     """(positions N x 3, quaternions N x 4, Lees-Edwards offset, box edge, strain) of the last
     trajectory frame."""
+    edges = np.asarray(h5[EDGES + "/value"][-1])  # the box vectors (3 x 3, H5MD), or older files' 3 edges
+    edge = float(edges[0, 0] if edges.ndim == 2 else edges[0])
     return (np.asarray(h5[POSITION + "/value"][-1]), np.asarray(h5[ORIENTATION + "/value"][-1]),
-            float(h5[OFFSET + "/value"][-1]), float(h5[EDGES + "/value"][-1][0]),
-            float(h5[STRAIN + "/value"][-1]))
+            float(h5[OFFSET + "/value"][-1]), edge, float(h5[STRAIN + "/value"][-1]))
 
 
 def minimum_image(d, edge, offset):

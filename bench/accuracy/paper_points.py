@@ -116,13 +116,19 @@ def measure(point, fldsim, outdir, count, parallel):
     jobs = {name: job(fldsim, yaml, workdir, name, run, frame if name == "startup" else T, frame, start)
             for name, (run, _) in runs.items()}
     jobs["reference"].steps *= 2 ** p["reference"]  # the longest first
+    for name in runs:  # a step the guard cannot rescue stops a run: a result of the setting, recorded
+        jobs[name].may_fail = name not in ("startup", "reference")
     print(f"{point}: {len(jobs)} runs in {workdir}", flush=True)
     timings = runner.run_all(list(jobs.values()), parallel, on_done=lambda j, t: print(
-        f"  {j.name}: {t.cpu:.1f} s cpu", flush=True))
+        f"  {j.name}: {t.cpu:.1f} s cpu" + (f"; stopped: {t.failure}" if t.failure else ""), flush=True))
     startup = timings["startup"].cpu
     rows = []
     for name, (run, dt) in runs.items():
         if name in ("startup", "reference"):
+            continue
+        if timings[name].failure:
+            rows.append({"name": name, "run": run, "dt": dt, "error": math.nan, "orientation_error": math.nan,
+                         "cost": math.nan, "cpu": timings[name].cpu, "steps": {}, "failure": timings[name].failure})
             continue
         position, orientation = errors.trajectory_error(jobs[name].output, jobs["reference"].output)
         steps = errors.step_statistics(jobs[name].output)
@@ -150,6 +156,9 @@ def table(result):
         mean_dt = s.get("dt_mean", math.nan)
         q = "/".join(f"{s.get(k, math.nan):.2g}" for k in ("dt_p05", "dt_p50", "dt_p95"))
         name = r["name"] + (" (paper dt)" if r["name"] == f"fixed_{PAPER_REFINE}" else "")
+        if r.get("failure"):
+            lines.append(f"| {name} | - | stopped | - | - | {r['failure'][:120]} |")
+            continue
         lines.append(f"| {name} | {mean_dt:.3g} | {r['error']:.3g} | {r['cost']:.4g} | "
                      f"{int(s.get('rejected', 0))} | {q} |")
     lines.append("")

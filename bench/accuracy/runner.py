@@ -23,6 +23,7 @@ class Job:
     output: str  # the result file it writes
     log: str  # where its stderr goes
     steps: int = 0  # expected time steps; the longest runs start first
+    may_fail: bool = False  # a run that stops (e.g. the guard cannot go on) is recorded, not fatal
 
 
 @dataclass
@@ -32,6 +33,7 @@ class Timing:
     steps: int
     ms_per_step: float  # fldsim's own wall ms/step of the time loop
     cg_per_step: float
+    failure: str = ""  # the run's last log line if it stopped with an error (only for may_fail jobs)
 
 
 def _parse_log(path):
@@ -43,7 +45,8 @@ def _parse_log(path):
 
 
 def run_all(jobs, parallel=1, on_done=None):
-    """Run the jobs, at most `parallel` at once; returns {name: Timing}. A failing run raises."""
+    """Run the jobs, at most `parallel` at once; returns {name: Timing}. A failing run raises,
+    unless it is `may_fail`: then its Timing carries the failure."""
     env = dict(os.environ, OMP_NUM_THREADS="1")
     pending = sorted(jobs, key=lambda j: -j.steps)  # longest first: both slots stay busy to the end
     running = {}  # pid -> (job, start time, log file)
@@ -64,6 +67,13 @@ def run_all(jobs, parallel=1, on_done=None):
         if proc.returncode != 0:
             with open(job.log, encoding="utf-8", errors="replace") as f:
                 tail = f.read()[-2000:]
+            if job.may_fail:
+                last = tail.strip().splitlines()[-1] if tail.strip() else f"exit code {proc.returncode}"
+                timings[job.name] = Timing(wall, usage.ru_utime + usage.ru_stime, 0, float("nan"),
+                                           float("nan"), last)
+                if on_done:
+                    on_done(job, timings[job.name])
+                continue
             for _, _, other_log, other in running.values():  # stop the runs still going
                 other.kill()
                 other.wait()

@@ -52,7 +52,7 @@ BrownianEquilibrium run_brownian(const EquilibriumScene& scene, const BrownianOp
   auto repulsion = make<ForceLaw>("force", "repulsion", scene.force_params);
   sc.finish(make<HydroModel>("hydro", scene.hydro, scene.hydro_params), {repulsion},
             HydroRequest{true, false, opt.stress_every > 0});
-  EulerMaruyama integrator(opt.seed, true, opt.drift, s.size());
+  EulerMaruyama integrator(opt.seed, true, opt.drift, s.size(), opt.rejected);
 
   const std::int64_t warm = std::llround(opt.equilibrate / opt.dt);
   const std::int64_t per_block = std::llround(opt.duration / opt.dt) / opt.sample_every / opt.blocks;
@@ -67,12 +67,16 @@ BrownianEquilibrium run_brownian(const EquilibriumScene& scene, const BrownianOp
   }
   fldsim::test::FakeSink sink;
   for (auto& o : observers) o->begin(s, info, sink);
-  StepControlSettings fixed;
-  fixed.frame = opt.dt;
+  StepControlSettings control;
+  control.frame = opt.dt;
+  control.adaptive = opt.adaptive;
+  control.tolerance = opt.tolerance;
+  control.reject_at = opt.reject_at;
+  control.order = integrator.error_order();
   StepGuard guard;
   guard.max_overlap = opt.max_overlap;
   StepLoop loop(s, integrator, *sc.evaluator, sc.list, observers, info, true,
-                opt.drift == DriftScheme::Midpoint, fixed, guard);
+                opt.drift == DriftScheme::Midpoint, control, guard);
 
   BrownianEquilibrium out;
   out.g = oracle::RadialHistogram(oracle::PairPoints::BodyCentres, opt.bin_width, opt.r_max);
@@ -92,6 +96,7 @@ BrownianEquilibrium run_brownian(const EquilibriumScene& scene, const BrownianOp
   }
   out.Z = oracle::block_mean(out.Z_blocks);
   out.steps = s.step();
+  out.accepted = loop.statistics().accepted_steps();
   out.rejected = loop.statistics().rejected_attempts();
   for (auto& o : observers) o->finish(info, sink);
   if (opt.stress_every > 0) {

@@ -37,6 +37,12 @@ struct BrownianOptions {
   std::uint64_t seed = 1;  // start and noise
   double bin_width = 0.01, r_max = 3.0;
   std::int64_t stress_every = 0;  // steps between stress-observer samples; 0 = no observer
+  // Step control (docs/time_steps.md): with `adaptive`, dt is dt_max (the frame; sample_every
+  // and stress_every count frames) and steps follow the error estimate.
+  bool adaptive = false;
+  double tolerance = 1e-3;  // a
+  double reject_at = 10.0;
+  RejectedNoise rejected = RejectedNoise::Bridge;  // Redraw: the broken variant, for tests
   // The step loop's stability guard (run.max_overlap): a step leaving a deeper node overlap is
   // rejected and retried shorter, which would bias a potential whose equilibrium has such overlaps.
   double max_overlap = 0.1;  // a
@@ -47,7 +53,8 @@ struct BrownianEquilibrium {
   std::vector<double> Z_blocks;  // configurational molecular virial
   oracle::MeanError Z;
   double Z_observer = 0.0, Z_observer_se = 0.0;  // from the stress observer (if stress_every > 0)
-  std::int64_t steps = 0;
+  std::int64_t steps = 0;                        // frames (= steps at a fixed dt)
+  std::int64_t accepted = 0;                     // time steps taken
   std::int64_t rejected = 0;  // step attempts the loop rejected (0 for an undisturbed fixed-step run)
   double min_gap = 0.0;       // smallest node surface gap seen at the samples
   double seconds = 0.0;

@@ -91,9 +91,10 @@ ParamSchema run_schema() {
             "same noise as the unrefined run, resolved finer): strong-convergence references")
       .at_least(0)
       .at_most(20);
-  s.number("max_overlap", 0.1, "a",
-           "stability guard, in every mode: a step that leaves two nodes overlapping by more than this (and "
-           "more than before it) is rejected and retried on a shorter step")
+  s.number(
+       "max_overlap", 0.1, "a",
+       "stability guard, in every mode: a step that leaves two nodes overlapping by more than this (and "
+       "deepens the deepest overlap by more than a tenth of it) is rejected and retried on a shorter step")
       .greater(0.0);
   s.number("duration", std::nullopt, "time_unit", "length of the run").greater(0.0);
   s.choice("time_unit", "paper", {"paper", "diffusive", "strain"},

@@ -84,7 +84,7 @@ void StepLoop::step(ResultSink& sink) {
       if (!a.finite) {
         why = Rejection::NonFinite;
         detail = "a velocity or position is not finite";
-      } else if (a.min_gap < -guard_.max_overlap && a.min_gap < gap_) {
+      } else if (a.min_gap < -guard_.max_overlap && a.min_gap < gap_ - guard_.deepening()) {
         why = Rejection::Overlap;
         detail = "nodes overlap by " + number(-a.min_gap) +
                  " a, more than run.max_overlap = " + number(guard_.max_overlap) + " a";
