@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <iostream>
+#include <memory>
 #include <vector>
 
 #include "Scene.hpp"
@@ -22,20 +23,29 @@ struct Diffusivities {
   double translational, rotational;
 };
 
+// A hard-sphere Monte Carlo configuration of n spheres at phi with the fld model's defaults
+// (CG tolerance 1e-8), the scene both estimators below start from.
+std::unique_ptr<Scene> fld_spheres(double phi, std::size_t n, std::uint64_t seed, Physics ph,
+                                   HydroRequest request) {
+  ph.volume_fraction = phi;
+  auto shape = make<Shape>("shape", "sphere");
+  const double edge = std::cbrt(double(n) * shape->volume() / phi);
+  auto scene = std::make_unique<Scene>(shape, n, edge, ph);
+  geometry::MonteCarloOptions opt;
+  opt.seed = seed;
+  geometry::initialise_monte_carlo(*scene->system, opt);
+  scene->finish(make<HydroModel>("hydro", "fld", "{tolerance: 1e-8}"), {}, request);
+  return scene;
+}
+
 Diffusivities measure(double phi, std::size_t n, int configurations, int draws) {
   double sum_t = 0, sum_r = 0;
   std::int64_t count = 0;
   for (int c = 0; c < configurations; ++c) {
     Physics ph;
     ph.kT = 1.0;
-    ph.volume_fraction = phi;
-    auto shape = make<Shape>("shape", "sphere");
-    const double edge = std::cbrt(double(n) * shape->volume() / phi);
-    Scene scene(shape, n, edge, ph);
-    geometry::MonteCarloOptions opt;
-    opt.seed = 100 + std::uint64_t(c);
-    geometry::initialise_monte_carlo(*scene.system, opt);
-    scene.finish(make<HydroModel>("hydro", "fld", "{tolerance: 1e-8}"), {}, HydroRequest{true, false, false});
+    const auto owned = fld_spheres(phi, n, 100 + std::uint64_t(c), ph, HydroRequest{true, false, false});
+    Scene& scene = *owned;
     const double dt = 1.0;  // any: U scales as 1/sqrt(dt)
     scene.evaluator->prepare(*scene.system, false);
     for (int d = 0; d < draws; ++d) {
@@ -107,14 +117,8 @@ double high_frequency_viscosity(double phi, std::size_t n, int configurations) {
     Physics ph;
     ph.kT = 0.0;
     ph.shear_rate = 1.0;
-    ph.volume_fraction = phi;
-    auto shape = make<Shape>("shape", "sphere");
-    const double edge = std::cbrt(double(n) * shape->volume() / phi);
-    Scene scene(shape, n, edge, ph);
-    geometry::MonteCarloOptions opt;
-    opt.seed = 300 + std::uint64_t(c);
-    geometry::initialise_monte_carlo(*scene.system, opt);
-    scene.finish(make<HydroModel>("hydro", "fld", "{tolerance: 1e-8}"), {}, HydroRequest{false, true, true});
+    const auto owned = fld_spheres(phi, n, 300 + std::uint64_t(c), ph, HydroRequest{false, true, true});
+    Scene& scene = *owned;
     HydroModel& hydro = *scene.hydro;
     hydro.assemble(*scene.system, scene.list.pairs());
     std::vector<double> F(6 * n, 0.0), dU(6 * n, 0.0);

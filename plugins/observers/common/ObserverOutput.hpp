@@ -9,7 +9,8 @@
 
 namespace fldsim::observers {
 
-// Writes mean and plateau SE; notes in the description when blocking found no plateau.
+// Writes mean and plateau SE; notes in the description when blocking found no plateau (`fldsim
+// summary` flags a row by that phrase, io/Summary.cpp kNoPlateau: keep the two in step).
 inline void write_blocked(ResultSink& out, const std::string& path, const BlockAverage& b,
                           const std::string& unit, const std::string& description, double scale = 1.0,
                           double shift = 0.0) {
