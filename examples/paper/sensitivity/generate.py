@@ -23,6 +23,7 @@ Variants (one change each against the current defaults):
                the fit, with its strain forcing: an isolated dumbbell then has a Jeffery orbit)
                instead of the paper's sphere-like R_0 per body
   rep100       repulsion prefactor 100 (C_p* x 10)
+  notaper      taper: none only (the abrupt cutoff; r0_fit fldsim then uses its abrupt-cutoff fit)
   lammpslens   lammps and lens together (LAMMPS's forms with the lens counted twice)
   long-X       variant X (long = baseline) over strains 0-500, averages from 150 as the paper's
                (kT = 0 only)
@@ -44,16 +45,17 @@ VARIANTS = {
     "isobody": {"hydro": "isotropic: body"},
     "rep100": {"prefactor": 100},
     "n1000": {"count": 1000},
+    "notaper": {"hydro": "taper: none"},
     "lammpslens": {"hydro": "conventions: lammps", "phi": 0.2531},
     "fixeddt": {"dt": 0.001},
 }
 LONG = {"duration": 500.0, "start": 150.0}
 VARIANTS["long"] = dict(LONG)
-for _name in ["lammps", "lens", "lammpslens", "oldforms"]:
+for _name in ["lammps", "lens", "lammpslens", "oldforms", "notaper"]:
     VARIANTS["long-" + _name] = dict(VARIANTS[_name], **LONG)
-BROWNIAN = ["baseline", "lammps", "lens", "lammpslens", "isobody", "rep100", "replica", "oldforms"]
-NOBROWN = ["baseline", "replica", "lammps", "oldforms", "lens", "isobody", "rep100", "lammpslens", "long",
-           "long-lammps", "long-lens", "long-lammpslens", "long-oldforms", "n1000", "fixeddt"]
+BROWNIAN = ["baseline", "lammps", "lens", "lammpslens", "notaper", "isobody", "rep100", "replica", "oldforms"]
+NOBROWN = ["baseline", "replica", "lammps", "oldforms", "lens", "isobody", "rep100", "lammpslens", "notaper", "long",
+           "long-lammps", "long-lens", "long-lammpslens", "long-oldforms", "long-notaper", "n1000", "fixeddt"]
 
 
 def experiment(name, variant, brownian):
