@@ -7,7 +7,8 @@ Per run: delta_theta_m, delta_phi_m, S_xx, S_yy, S_zz and N2 (mean +- the observ
 '(np)' marks a value whose blocking found no plateau, so the SE is a lower bound), the averaging
 window in strains, the orientation decorrelation time, and the means of delta_theta_m over
 consecutive 20-strain blocks of the window (from the theta_m time series) to show whether the sign
-holds throughout the run.
+holds throughout the run, with the standard error of their mean (blocks longer than the
+decorrelation time are nearly independent, so this SE does not need the blocking plateau).
 """
 import glob
 import math
@@ -43,21 +44,22 @@ def cell(h5, path):
 def blocks(h5):
     g = h5.get("timeseries/orientation/theta_m")
     if g is None:
-        return "", ""
+        return "", "", ""
     t, v = np.asarray(g["time"]), np.asarray(g["value"]) - 1.0
     window = f"{t[0]:g}–{t[-1]:g}"
     edges = np.arange(t[0], t[-1] + 1e-9, BLOCK)
     means = [v[(t >= a) & (t < a + BLOCK)].mean() for a in edges[:-1]]
-    return window, " ".join(f"{m:+.3f}" for m in means)
+    spread = f"{np.mean(means):+.3f} ± {np.std(means, ddof=1) / math.sqrt(len(means)):.3f}" if len(means) > 1 else "–"
+    return window, spread, " ".join(f"{m:+.3f}" for m in means)
 
 
 def row(path):
     name = os.path.basename(path)[:-3]
     with h5py.File(path, "r") as h5:
-        window, block_means = blocks(h5)
+        window, spread, block_means = blocks(h5)
         d = h5.get("results/orientation/decorrelation_time")
         tau = f"{float(d[()]):.1f}" if d is not None else "–"
-        return [name, window] + [cell(h5, q) for q, _ in QUANTITIES] + [tau, block_means]
+        return [name, window] + [cell(h5, q) for q, _ in QUANTITIES] + [tau, spread, block_means]
 
 
 def main():
@@ -65,7 +67,7 @@ def main():
     order = ["brownian-" + v for v in generate.BROWNIAN] + ["nobrown-" + v for v in generate.NOBROWN]
     files = {os.path.basename(p)[:-3]: p for p in glob.glob(os.path.join(root, "*.h5"))}
     head = ["run", "strains averaged"] + [label for _, label in QUANTITIES] + \
-        ["decorrelation (strains)", f"Δθ_m per {BLOCK:g}-strain block"]
+        ["decorrelation (strains)", f"Δθ_m ± SE of {BLOCK:g}-strain blocks", f"Δθ_m per {BLOCK:g}-strain block"]
     print("| " + " | ".join(head) + " |")
     print("|" + "---|" * len(head))
     for name in order:
