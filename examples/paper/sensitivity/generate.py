@@ -23,6 +23,10 @@ Variants (one change each against the current defaults):
                the fit, with its strain forcing: an isolated dumbbell then has a Jeffery orbit)
                instead of the paper's sphere-like R_0 per body
   rep100       repulsion prefactor 100 (C_p* x 10)
+  centrearm    strain_arm: centre alone (kT = 0 only)
+  lever, pump, twist, khfit
+               one LAMMPS form each: lever: contact; pump: lammps; twist: false; r0_fit: kumar_higdon
+               (kT = 0 only: which part of `lammps` moves delta_theta_m)
   notaper      taper: none only (the abrupt cutoff; r0_fit fldsim then uses its abrupt-cutoff fit)
   lammpslens   lammps and lens together (LAMMPS's forms with the lens counted twice)
   long-X       variant X (long = baseline) over strains 0-500, averages from 150 as the paper's
@@ -46,6 +50,11 @@ VARIANTS = {
     "rep100": {"prefactor": 100},
     "n1000": {"count": 1000},
     "notaper": {"hydro": "taper: none"},
+    "centrearm": {"hydro": "strain_arm: centre"},
+    "lever": {"hydro": "lever: contact"},
+    "pump": {"hydro": "pump: lammps"},
+    "twist": {"hydro": "twist: false"},
+    "khfit": {"hydro": "r0_fit: kumar_higdon"},
     "lammpslens": {"hydro": "conventions: lammps", "phi": 0.2531},
     "fixeddt": {"dt": 0.001},
 }
@@ -54,7 +63,7 @@ VARIANTS["long"] = dict(LONG)
 for _name in ["lammps", "lens", "lammpslens", "oldforms", "notaper"]:
     VARIANTS["long-" + _name] = dict(VARIANTS[_name], **LONG)
 BROWNIAN = ["baseline", "lammps", "lens", "lammpslens", "notaper", "isobody", "rep100", "replica", "oldforms"]
-NOBROWN = ["baseline", "replica", "lammps", "oldforms", "lens", "isobody", "rep100", "lammpslens", "notaper", "long",
+NOBROWN = ["baseline", "replica", "lammps", "oldforms", "lens", "isobody", "rep100", "lammpslens", "notaper", "centrearm", "lever", "pump", "twist", "khfit", "long",
            "long-lammps", "long-lens", "long-lammpslens", "long-oldforms", "long-notaper", "n1000", "fixeddt"]
 
 
