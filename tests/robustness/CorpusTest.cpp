@@ -543,6 +543,14 @@ TEST_F(Corpus, ResourcesAndFeasibility) {
       {at_key("run.duration") + "run\\.duration / run\\.dt = 1e\\+302 steps; at most 1e\\+09"});
   add("dt 1e-300", [](YAML::Node& r) { r["run"]["dt"] = 1e-300; },
       {at_key("run.duration") + "run\\.duration / run\\.dt = 1e\\+299 steps"});
+  // Base: duration 0.1 / dt 0.01 = 10 frames; refine 20 takes each in 2^20 steps (1e7), fine;
+  // with duration 1e3 the 1e5 frames become 1e11 steps.
+  add("refine beyond the step limit",
+      [](YAML::Node& r) {
+        r["run"]["duration"] = 1000;
+        r["run"]["refine"] = 20;
+      },
+      {at_key("run.refine") + "20: run\\.duration / run\\.dt x 2\\^refine = 1\\.04858e\\+11 steps; at most 1e\\+09"});
   add("count 1e9", [](YAML::Node& r) { r["system"]["count"] = "1e9"; },
       {at_key("system.count") + "expected an integer >= 1 and <= 1e\\+08, got 1e9"});
   add("count 4294967297", [](YAML::Node& r) { r["system"]["count"] = "4294967297"; },
