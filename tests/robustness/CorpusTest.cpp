@@ -550,7 +550,7 @@ TEST_F(Corpus, ResourcesAndFeasibility) {
         r["run"]["duration"] = 1000;
         r["run"]["refine"] = 20;
       },
-      {at_key("run.refine") + "20: run\\.duration / run\\.dt x 2\\^refine = 1\\.04858e\\+11 steps; at most 1e\\+09"});
+      {at_key("run.refine") + "20: run\\.duration / run\\.dt x 2\\^refine = 1\\.049e\\+11 steps; at most 1e\\+09"});
   add("count 1e9", [](YAML::Node& r) { r["system"]["count"] = "1e9"; },
       {at_key("system.count") + "expected an integer >= 1 and <= 1e\\+08, got 1e9"});
   add("count 4294967297", [](YAML::Node& r) { r["system"]["count"] = "4294967297"; },
