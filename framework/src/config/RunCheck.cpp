@@ -336,7 +336,11 @@ RunCheckReport check_run(const Experiment& ex, const PluginRegistry& registry, c
     const ObserverBlock& o = ex.observers[i];
     if (total_steps == 0 || !observers[i]) continue;
     if (observers[i]->needs().every_step) continue;
-    const std::int64_t n = samples_taken(total_steps, o.every, o.start, ex.dt);
+    // The core samples after steps; the trajectory observer also writes the start frame in its
+    // begin() when `start` is 0 (a run that wants only the start configuration is valid).
+    // TODO(plugin API 5): an ObserverNeeds flag instead of the name.
+    const std::int64_t n = samples_taken(total_steps, o.every, o.start, ex.dt) +
+                           (o.plugin.name == "trajectory" && o.start <= 0.0 ? 1 : 0);
     if (n == 0) {
       if (o.start > ex.duration)
         problems.at(o.plugin.params, "start",
