@@ -153,8 +153,8 @@ int sweep_command(const std::vector<std::string>& args) {
     plan = read_sweep_plan(file, read_base_seeds);
     if (collect_only) {
       const StudyFiles f = write_study_table(plan);
-      std::cout << f.csv << ", " << f.h5 << ": " << f.rows << " points, " << f.with_results
-                << " with results\n";
+      std::cout << f.csv << ", " << f.h5 << ": " << f.rows << " points, " << f.with_results << " done, "
+                << f.partial << " interrupted (partial results)\n";
       return 0;
     }
     points = check_sweep_points(plan);
@@ -209,8 +209,9 @@ int sweep_command(const std::vector<std::string>& args) {
       ++failed;
   }
   const StudyFiles f = write_study_table(plan);
-  log << "fldsim sweep: " << f.with_results << " of " << f.rows << " points have results; study table "
-      << f.csv << " and " << f.h5 << "\n";
+  log << "fldsim sweep: " << f.with_results << " of " << f.rows << " points done"
+      << (f.partial ? " (" + std::to_string(f.partial) + " interrupted, partial results flagged)" : "")
+      << "; study table " << f.csv << " and " << f.h5 << "\n";
   if (outcome.interrupted || stopped) {
     log << "fldsim sweep: interrupted; run the same command again to resume\n";
     return 128 + (sweep_signal() ? sweep_signal() : 2);

@@ -195,6 +195,9 @@ TEST(Sweep, AnInterruptedSweepResumesToTheNumbersOfAnUninterruptedRun) {
   ASSERT_TRUE(WIFEXITED(status));
   ASSERT_EQ(WEXITSTATUS(status), 130) << "an interrupted sweep says so with 128 + SIGINT";
   ASSERT_TRUE(fs::exists(d / "results" / "duration-60_plugin-fld.h5.checkpoint"));
+  const auto partial = read_csv(d / "results" / "study.csv");
+  ASSERT_EQ(partial.size(), 1u);
+  EXPECT_EQ(partial[0].at("status"), "interrupted") << "partial results must be flagged in the study table";
 
   const Result resumed = run(sweep(d));
   ASSERT_EQ(resumed.code, 0) << resumed.output;

@@ -12,11 +12,13 @@ namespace fldsim {
 
 struct StudyFiles {
   std::string csv, h5;
-  std::size_t rows = 0, with_results = 0;
+  std::size_t rows = 0, with_results = 0;  // with_results: finished runs
+  std::size_t partial = 0;                 // interrupted runs (partial results, flagged)
 };
 
-// Reads each point's result file (points without one are listed with status "missing" and no
-// results) and writes both files atomically (temporary name, then rename).
+// Reads each point's result file and writes both files atomically (temporary name, then
+// rename). Status per point: done; interrupted (a signal stopped its run: partial results, listed
+// but flagged); unfinished (only a checkpoint); missing; unreadable.
 StudyFiles write_study_table(const SweepPlan& plan);
 
 }  // namespace fldsim
