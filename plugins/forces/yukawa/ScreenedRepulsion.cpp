@@ -8,7 +8,8 @@
 namespace fldsim {
 
 void ScreenedRepulsion::describe(ParamSchema& s) {
-  s.number("strength", 100.0, "", "A*, in units of 6 pi mu a^2 rate (see `unit`): F = A exp(-kappa h) at gap h")
+  s.number("strength", 100.0, "",
+           "A*, in units of 6 pi mu a^2 rate (see `unit`): F = A exp(-kappa h) at gap h")
       .at_least(0.0);
   s.number("kappa", 100.0, "1/a", "inverse screening length kappa").greater(0.0);
   s.number("cutoff", 2.5, "a", "centre-to-centre distance beyond which the force is zero (per node pair)")
@@ -65,7 +66,8 @@ void ScreenedRepulsion::add(const System& system, const NodePairList& pairs, dou
     add_node_wrench(wrench + 6 * p.body_j, off[p.body_j * m + p.node_b], fj, Vec3::Zero());
     add_node_wrench(wrench + 6 * p.body_i, off[p.body_i * m + p.node_a], -fj, Vec3::Zero());
     // Molecular virial: the bodies' centre separation R = r - d_jb + d_ia (force.hpp).
-    if (virial) *virial += (p.r - off[p.body_j * m + p.node_b] + off[p.body_i * m + p.node_a]) * fj.transpose();
+    if (virial)
+      *virial += (p.r - off[p.body_j * m + p.node_b] + off[p.body_i * m + p.node_a]) * fj.transpose();
   }
 }
 
