@@ -170,6 +170,7 @@ std::vector<PointState> check_sweep_points(const SweepPlan& plan) {
       st.steps = report.steps;
       st.nodes = report.nodes;
       st.cost_seconds = estimated_cpu_seconds(st.hydro, st.steps, st.nodes, ex.brownian);
+      st.adaptive = ex.dt_auto;
     } catch (const ConfigError& e) {
       std::istringstream lines(point_errors(e.what(), p));
       for (std::string line; std::getline(lines, line);)
@@ -208,7 +209,7 @@ void print_sweep_listing(const SweepPlan& plan, const std::vector<PointState>& p
   for (const auto& st : points) {
     const SweepPoint& p = plan.points[st.index];
     out << std::left << std::setw(int(width)) << p.label << "  " << std::setw(10) << to_string(st.status)
-        << "  " << std::setw(12) << st.steps << std::setw(8) << st.nodes << "  "
+        << "  " << std::setw(12) << st.steps << std::setw(8) << st.nodes << "  " << (st.adaptive ? ">= " : "")
         << format_duration(st.cost_seconds) << "\n";
     all += st.cost_seconds;
     if (st.status != PointStatus::Done) todo += st.cost_seconds;
@@ -219,6 +220,11 @@ void print_sweep_listing(const SweepPlan& plan, const std::vector<PointState>& p
       << counts[int(PointStatus::Changed)] << " changed; estimated CPU " << format_duration(todo)
       << " to go (" << format_duration(all) << " for the whole sweep; " << plan.threads
       << " thread(s) per point)\n";
+  for (const auto& st : points)
+    if (st.adaptive) {
+      out << "\">=\": dt: auto; the estimate counts one step per frame, and adaptive runs take more\n";
+      break;
+    }
   for (const auto& st : points)
     if (st.status == PointStatus::Changed)
       out << "changed: " << plan.points[st.index].label << ": " << st.why_changed << "\n";

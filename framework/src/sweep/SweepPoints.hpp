@@ -30,6 +30,7 @@ struct PointState {
   std::int64_t steps = 0, nodes = 0;
   std::string hydro;
   double cost_seconds = 0.0;  // estimated CPU seconds (cost model, docs/sweep.md)
+  bool adaptive = false;      // dt: auto: the estimate counts one step per frame, a lower bound
 };
 
 // Validates every point (all problems of all points at once: ConfigError with one line each,
