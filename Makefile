@@ -60,8 +60,11 @@ bench: build
 validate: build
 	@bash validate/run.sh $(BUILD) $(V)
 
+# The quick study (examples/paper/quick-sweep.yaml): a sweep on the local cores (finished points
+# are skipped, interrupted ones resumed), then the paper's figures from its result files.
 figures: build
-	@bash examples/paper/quick/run_quick_study.sh $(BUILD)
+	$(FLDSIM) sweep examples/paper/quick-sweep.yaml
+	/usr/bin/python3 tools/plot_study.py results/quick-study/*.h5 -o results/quick-study/figures --table
 
 docs: build
 	@bash tools/plugin-docs.sh $(BUILD)

@@ -114,13 +114,12 @@ fi
 "$py" "$root/bench/step/results_tables.py" "$csv" "$out/parts.json" > "$out/fldsim.md"
 
 # The other benchmark sets write OUTDIR/<name>.md.
-for name in accuracy lammps; do
-  script=$root/bench/$name/run.sh
-  if [ -x "$script" ]; then
-    echo "== bench/$name"
-    "$script" "$build" "$out" || echo "  bench/$name/run.sh failed"
-  fi
-done
+echo "== bench/accuracy"
+"$root/bench/accuracy/run.sh" "$build" "$out" || echo "  bench/accuracy/run.sh failed"
+# Against LAMMPS on three scenes, LAMMPS's documented settings first (bench/lammps/README.md).
+echo "== bench/lammps (three scenes)"
+"$root/bench/lammps/three_scenes.sh" "$build" "$out/lammps" > /dev/null && cp "$out/lammps/three_scenes.md" "$out/lammps.md" ||
+  echo "  bench/lammps/three_scenes.sh failed"
 
 {
   echo "# fldsim benchmark results"

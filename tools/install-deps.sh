@@ -3,7 +3,8 @@
 set -euo pipefail
 packages=(cmake g++ make libeigen3-dev libboost-dev libboost-filesystem-dev libyaml-cpp-dev libhdf5-dev
           hdf5-tools libgtest-dev libgmock-dev libbenchmark-dev python3 python3-numpy python3-matplotlib
-          python3-h5py python3-dev pybind11-dev python3-pybind11 python3-gsd python3-mdanalysis)
+          python3-h5py python3-dev pybind11-dev python3-pybind11 python3-gsd python3-mdanalysis
+          libopenmpi-dev openmpi-bin)
 missing=()
 for p in "${packages[@]}"; do
   if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then

@@ -31,7 +31,28 @@ FRESH_START="${FRESH_START:-0}"
 REPEAT="${REPEAT:-3}"
 DT=1.0e-4   # a^2/D0, both codes
 PE=10
-CUTIN=2.00001   # LAMMPS inner cutoff = 2 a + fldsim's delta_num (1e-5 a)
+# SCENE (README.md, "The three scenes"): the settings of both codes.
+#   documented  LAMMPS's documented FLD settings: inner cutoff 2.01 a, yukawa/colloid repulsion
+#               A = 100 (6 pi mu a^2 gammadot), kappa = 100/a; fldsim: delta_num 0.01 and the same
+#               force law (plugin yukawa)
+#   paper       the paper's: gap floor 1e-5 a, the paper's repulsion in fldsim (C_p* = 10) and in
+#               LAMMPS a yukawa/colloid of the same range (kappa = 1000/a, through the paper force
+#               at h = 2e-4 a; a closer fit, kappa = 6106/a, loses atoms in LAMMPS at this dt)
+#   clamp       no repulsion in either code, gap floor 1e-5 a (the bench's original scene)
+SCENE="${SCENE:-documented}"
+case "$SCENE" in
+  documented)
+    CUTIN=2.01; LMP_A="$(awk "BEGIN{print 100 * $PE}")"; LMP_KAPPA=100; LMP_YCUT=2.5
+    scene_set=(--set hydro.delta_num=0.01
+      --set "forces=[{plugin: yukawa, strength: 100, kappa: 100, cutoff: 2.5, unit: shear}]") ;;
+  paper)
+    CUTIN=2.00001; LMP_A=90.0; LMP_KAPPA=1000; LMP_YCUT=2.01
+    scene_set=(--set "forces=[{plugin: repulsion, prefactor: 10, unit: paper}]") ;;
+  clamp)
+    CUTIN=2.00001; LMP_A=0; LMP_KAPPA=1; LMP_YCUT=2.5
+    scene_set=() ;;
+  *) echo "run.sh: SCENE=$SCENE: expected documented, paper or clamp" >&2; exit 2 ;;
+esac
 PY=/usr/bin/python3
 export OMP_NUM_THREADS=1
 
@@ -59,6 +80,9 @@ lmp_package="$(dpkg-query -W -f='${Version}' lammps 2> /dev/null || echo unknown
 
 # --- the shared start ------------------------------------------------------------------------
 cd "$outdir"
+rm -f lammps.failed
+# START: a start file to share between scenes (three_scenes.sh), copied here.
+if [[ -n "${START:-}" && ! -f start.h5 ]]; then cp "$START" start.h5; fi
 if [[ "$FRESH_START" == 1 || ! -f start.h5 ]]; then
   echo "start: fldsim hard-sphere Monte Carlo, N = 1000, phi = 0.45 (a few minutes)" >&2
   "$fldsim" run "$here/start.yaml" -o "$outdir/start.h5" --overwrite > start.log 2>&1 ||
@@ -68,11 +92,21 @@ else
 fi
 "$PY" "$here/to_lammps_data.py" "$outdir/start.h5" "$outdir/start.data"
 
-# run_lammps NAME WARM STEPS: one LAMMPS run under /usr/bin/time.
+# run_lammps NAME WARM STEPS: one LAMMPS run under /usr/bin/time. A run that stops with an
+# error (e.g. "Lost atoms": an explicit stiff repulsion at this dt) is recorded in lammps.failed,
+# reported by report.py, and not repeated; fldsim is still timed.
 run_lammps() {
+  [[ -f lammps.failed ]] && return 0
+  if ! run_lammps_once "$@"; then
+    grep -h ERROR "$1.log" | head -1 > lammps.failed
+    [[ -s lammps.failed ]] || echo "LAMMPS exited with an error (see $outdir/$1.log)" > lammps.failed
+    echo "lammps: $(cat lammps.failed)" >&2
+  fi
+}
+run_lammps_once() {
   /usr/bin/time -f "%U %S %e" -o "$1.time" lmp -in "$here/fld.lmp" -log "$1.log" -screen none -nocite \
     -var data "$outdir/start.data" -var warm "$2" -var steps "$3" -var dt "$DT" -var pe "$PE" \
-    -var cutin "$CUTIN" -var seed 4321 -var every "$EVERY"
+    -var cutin "$CUTIN" -var seed 4321 -var every "$EVERY" -var A "$LMP_A" -var kappa "$LMP_KAPPA" -var ycut "$LMP_YCUT"
 }
 
 # run_fldsim NAME STEPS [--set ...]: one fldsim run under /usr/bin/time.
@@ -83,10 +117,11 @@ run_fldsim() {
     --overwrite --set system.init.file="$outdir/start.h5" \
     --set run.duration="$("$PY" -c "print($steps * $DT)")" \
     --set "observers.0.start=$("$PY" -c "print($WARMUP * $DT)")" --set "observers.0.every=$EVERY" \
-    "$@" > "$name.log" 2>&1 || { cat "$name.log" >&2; exit 1; }
+    "${scene_set[@]}" "$@" > "$name.log" 2>&1 || { cat "$name.log" >&2; exit 1; }
 }
 
-lammps_forms=(--set hydro.pump=lammps --set hydro.twist=false --set hydro.r0_fit=kumar_higdon)
+# LAMMPS's exact pair forms (hydro.conventions: lammps; LammpsParityTest checks them).
+lammps_forms=(--set hydro.conventions=lammps)
 total=$((WARMUP + STEPS))
 
 # Per-step CPU time = (CPU of a WARMUP + STEPS run - CPU of a WARMUP run) / STEPS: start-up and
@@ -136,7 +171,8 @@ if [[ "$COUNT_CG" == 1 ]] && command -v gdb > /dev/null; then
   count_calls lammps.gdb - 'LAMMPS_NS::PairLubricateU::compute_RU()' \
     'LAMMPS_NS::PairLubricateU::compute_RU(double**)' -- \
     lmp -in "$here/fld.lmp" -log none -screen none -nocite -var data "$outdir/start.data" -var warm 0 \
-    -var steps "$COUNT_STEPS" -var dt "$DT" -var pe "$PE" -var cutin "$CUTIN" -var seed 4321 -var every "$EVERY"
+    -var steps "$COUNT_STEPS" -var dt "$DT" -var pe "$PE" -var cutin "$CUTIN" -var seed 4321 -var every "$EVERY" \
+    -var A "$LMP_A" -var kappa "$LMP_KAPPA" -var ycut "$LMP_YCUT"
   for variant in lammps default; do
     extra=()
     [[ $variant == lammps ]] && extra=("${lammps_forms[@]}")
@@ -145,11 +181,11 @@ if [[ "$COUNT_CG" == 1 ]] && command -v gdb > /dev/null; then
       'fldsim::BlockSparseMatrix::multiply(double const*, double*) const' -- \
       "$fldsim" run "$here/scene.yaml" -o "$outdir/count-$variant.h5" --overwrite \
       --set system.init.file="$outdir/start.h5" --set run.duration="$("$PY" -c "print($COUNT_STEPS * $DT)")" \
-      "${extra[@]}"
+      "${scene_set[@]}" "${extra[@]}"
   done
 fi
 
-"$PY" "$here/report.py" --outdir "$outdir" --steps "$STEPS" --warmup "$WARMUP" --every "$EVERY" --repeat "$REPEAT" \
+"$PY" "$here/report.py" --scene "$SCENE" --outdir "$outdir" --steps "$STEPS" --warmup "$WARMUP" --every "$EVERY" --repeat "$REPEAT" \
   --count-steps "$COUNT_STEPS" --dt "$DT" --pe "$PE" --lammps-version "$lmp_version ($lmp_package)" \
   > "$outdir/lammps.md"
 cat "$outdir/lammps.md"

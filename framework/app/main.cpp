@@ -22,6 +22,7 @@
 #include "plugins/PluginRegistry.hpp"
 #include "run/Experiment.hpp"
 #include "run/RunExperiment.hpp"
+#include "SweepCommand.hpp"
 #include "run/Simulation.hpp"
 
 namespace {
@@ -38,6 +39,7 @@ const char* kUsage =
     "  summary RUN.h5              print the steady-state results of a run\n"
     "  oracle FILE.yaml            exact equilibrium g(r) and Z of its potential (Monte Carlo)\n"
     "  export RUN.h5 --gsd OUT.gsd  the trajectory as GSD frames (OVITO, HOOMD tools)\n"
+    "  sweep SWEEP.yaml            a study: every point of a sweep file, locally or over MPI\n"
     "\n"
     "`fldsim CMD --help` documents each command; `fldsim --version` prints the version.\n";
 
@@ -284,6 +286,7 @@ int dispatch(int argc, char** argv) {
     if (cmd == "check") return cmd_run(rest, true);
     if (cmd == "plugins") return cmd_plugins(rest);
     if (cmd == "summary") return cmd_summary(rest);
+    if (cmd == "sweep") return fldsim::sweep_command(rest);
     if (cmd == "oracle") return fldsim::oracle_command(rest, std::cout, std::cerr);
     return usage_error("unknown command '" + cmd + "'", kUsage);
   } catch (const fldsim::ConfigError& e) {

@@ -543,6 +543,15 @@ TEST_F(Corpus, ResourcesAndFeasibility) {
       {at_key("run.duration") + "run\\.duration / run\\.dt = 1e\\+302 steps; at most 1e\\+09"});
   add("dt 1e-300", [](YAML::Node& r) { r["run"]["dt"] = 1e-300; },
       {at_key("run.duration") + "run\\.duration / run\\.dt = 1e\\+299 steps"});
+  // Base: duration 0.1 / dt 0.01 = 10 frames; refine 20 takes each in 2^20 steps (1e7), fine;
+  // with duration 1e3 the 1e5 frames become 1e11 steps.
+  add("refine beyond the step limit",
+      [](YAML::Node& r) {
+        r["run"]["duration"] = 1000;
+        r["run"]["refine"] = 20;
+      },
+      {at_key("run.refine") +
+       "20: run\\.duration / run\\.dt x 2\\^refine = 1\\.049e\\+11 steps; at most 1e\\+09"});
   add("count 1e9", [](YAML::Node& r) { r["system"]["count"] = "1e9"; },
       {at_key("system.count") + "expected an integer >= 1 and <= 1e\\+08, got 1e9"});
   add("count 4294967297", [](YAML::Node& r) { r["system"]["count"] = "4294967297"; },
@@ -573,7 +582,16 @@ TEST_F(Corpus, ResourcesAndFeasibility) {
       {at_key("observers[1]") + ".*range"});
   add("observer start after the end", [](YAML::Node& r) { r["observers"][0]["start"] = 5; },
       {at_key("observers[0].start") + "5 is after the end of the run"});
-  add("observer every longer than the run", [](YAML::Node& r) { r["observers"][0]["every"] = 1000; },
+  // A trajectory records its start frame whatever `every` is; an observer that only samples after
+  // steps records nothing.
+  add("observer every longer than the run",
+      [](YAML::Node& r) { r["observers"].push_back(YAML::Load("{plugin: stress, every: 1000}")); },
+      {at_key("observers[1].every") + "1000 steps: no sample falls in the run's 10 steps"});
+  add("trajectory started later, every longer than the run",
+      [](YAML::Node& r) {
+        r["observers"][0]["every"] = 1000;
+        r["observers"][0]["start"] = 0.05;
+      },
       {at_key("observers[0].every") + "1000 steps: no sample falls in the run's 10 steps"});
   add("checkpoint more often than a step", [](YAML::Node& r) { r["run"]["checkpoint_every"] = 0.001; },
       {at_key("run.checkpoint_every") + "shorter than one step"});

@@ -314,10 +314,16 @@ RunCheckReport check_run(const Experiment& ex, const PluginRegistry& registry, c
   std::int64_t total_steps = 0;
   if (ex.dt > 0.0 && ex.duration > 0.0) {
     const double steps = ex.duration / ex.dt;
+    // run.refine takes every frame in 2^refine steps: those are the steps that must fit.
+    const double refined = std::ldexp(steps, ex.refine);
     if (!(steps <= kMaxSteps))
       problems.at(run, "duration",
                   "run.duration / run.dt = " + num(steps) + " steps; at most " + num(kMaxSteps) +
                       " steps per run (a longer dt, a shorter duration, or several resumed runs)");
+    else if (!(refined <= kMaxSteps))
+      problems.at(run, "refine",
+                  std::to_string(ex.refine) + ": run.duration / run.dt x 2^refine = " + num(refined) +
+                      " steps; at most " + num(kMaxSteps) + " steps per run");
     else
       total_steps = std::max<std::int64_t>(1, std::llround(steps));
   }
@@ -330,7 +336,11 @@ RunCheckReport check_run(const Experiment& ex, const PluginRegistry& registry, c
     const ObserverBlock& o = ex.observers[i];
     if (total_steps == 0 || !observers[i]) continue;
     if (observers[i]->needs().every_step) continue;
-    const std::int64_t n = samples_taken(total_steps, o.every, o.start, ex.dt);
+    // The core samples after steps; the trajectory observer also writes the start frame in its
+    // begin() when `start` is 0 (a run that wants only the start configuration is valid).
+    // TODO(plugin API 5): an ObserverNeeds flag instead of the name.
+    const std::int64_t n = samples_taken(total_steps, o.every, o.start, ex.dt) +
+                           (o.plugin.name == "trajectory" && o.start <= 0.0 ? 1 : 0);
     if (n == 0) {
       if (o.start > ex.duration)
         problems.at(o.plugin.params, "start",
@@ -528,6 +538,9 @@ RunCheckReport check_run(const Experiment& ex, const PluginRegistry& registry, c
     << " a), hydro " << ex.hydro.name << ", " << ex.forces.size() << " force(s), " << ex.observers.size()
     << " observer(s), " << total_steps << " steps";
   report.summary = s.str();
+  report.steps = total_steps;
+  report.nodes = shape ? ex.count * std::int64_t(shape->nodes().size()) : 0;
+  report.volume_fraction = phi;
   return report;
 }
 

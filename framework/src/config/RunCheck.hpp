@@ -9,6 +9,7 @@
 // each, naming file:line:col and key, or the command-line option.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,10 @@ constexpr double kMaxSteps = 1e9;
 struct RunCheckReport {
   std::vector<std::string> warnings;  // e.g. a used plugin shadows another; for the log
   std::string summary;                // "64 x dicolloid, phi = 0.3, 20000 steps, ..."
+  // The scene's size, for cost estimates (`fldsim sweep --dry-run`).
+  std::int64_t steps = 0;        // frames: run.duration / run.dt (dt_max with dt: auto)
+  std::int64_t nodes = 0;        // spheres of all bodies
+  double volume_fraction = 0.0;  // true phi of the box
 };
 
 // Throws ConfigError listing every problem (exit code 2).

@@ -27,7 +27,7 @@ struct Row {
 // Observers write blocked averages with write_blocked(), which says so in the description.
 constexpr const char* kNoPlateau = "no plateau reached";
 
-void collect(const H5::Group& group, const std::string& prefix, std::vector<Row>& rows) {
+void collect(const H5::Group& group, const std::string& prefix, std::vector<ResultScalar>& rows) {
   for (hsize_t i = 0; i < group.getNumObjs(); ++i) {
     const std::string name = group.getObjnameByIdx(i);
     const std::string full = prefix.empty() ? name : prefix + "/" + name;
@@ -40,12 +40,10 @@ void collect(const H5::Group& group, const std::string& prefix, std::vector<Row>
     H5::DataSet d = group.openDataSet(name);
     const H5T_class_t cls = d.getTypeClass();
     if ((cls != H5T_FLOAT && cls != H5T_INTEGER) || d.getSpace().getSimpleExtentNpoints() != 1) continue;
-    double value = 0.0;
-    d.read(&value, H5::PredType::NATIVE_DOUBLE);
-    const double err = d.attrExists("stderr") ? io::read_double_attribute(d, "stderr") : std::nan("");
-    Row row;
+    ResultScalar row;
     row.name = full;
-    format_with_error(value, err, row.value, row.stderr_text);
+    d.read(&row.value, H5::PredType::NATIVE_DOUBLE);
+    row.stderr_value = d.attrExists("stderr") ? io::read_double_attribute(d, "stderr") : std::nan("");
     row.unit = d.attrExists("unit") ? io::read_string_attribute(d, "unit") : "";
     row.no_plateau = d.attrExists("description") &&
                      io::read_string_attribute(d, "description").find(kNoPlateau) != std::string::npos;
@@ -84,18 +82,31 @@ void format_with_error(double value, double stderr_value, std::string& value_tex
   }
 }
 
-int print_summary(const std::string& path, std::ostream& out) {
+std::vector<ResultScalar> read_result_scalars(const std::string& path) {
   io::quiet_hdf5();
   if (!std::filesystem::exists(path)) throw Error(path + ": file not found");
-  std::vector<Row> rows;
+  std::vector<ResultScalar> scalars;
   try {
     H5::H5File file(path, H5F_ACC_RDONLY);
     H5::Group root = file.openGroup("/");
     if (!io::path_exists(root, "results") || root.childObjType("results") != H5O_TYPE_GROUP)
       throw Error(path + ": no /results group (did the run finish and have observers that write results?)");
-    collect(root.openGroup("results"), "", rows);
+    collect(root.openGroup("results"), "", scalars);
   } catch (const H5::Exception& e) {
     io::fail(path, "cannot read the result file", e);
+  }
+  return scalars;
+}
+
+int print_summary(const std::string& path, std::ostream& out) {
+  std::vector<Row> rows;
+  for (const ResultScalar& r : read_result_scalars(path)) {
+    Row row;
+    row.name = r.name;
+    format_with_error(r.value, r.stderr_value, row.value, row.stderr_text);
+    row.unit = r.unit;
+    row.no_plateau = r.no_plateau;
+    rows.push_back(std::move(row));
   }
 
   Row header{"name", "value", "stderr", "unit"};

@@ -3,8 +3,21 @@
 
 #include <ostream>
 #include <string>
+#include <vector>
 
 namespace fldsim {
+
+// One scalar dataset under /results, as observers write it.
+struct ResultScalar {
+  std::string name;                        // relative to /results, e.g. orientation/delta_theta_m
+  double value = 0.0, stderr_value = 0.0;  // stderr NaN when the dataset has none
+  std::string unit;
+  bool no_plateau = false;  // the blocking analysis found no plateau: the SE is a lower bound
+};
+
+// Every scalar dataset under /results, in file order. Throws fldsim::Error if the file cannot be
+// read or has no /results group.
+std::vector<ResultScalar> read_result_scalars(const std::string& path);
 
 // Prints every scalar dataset under /results (name relative to /results, value, standard
 // error, unit) in aligned columns, each value rounded to the precision of its error. Returns 0;

@@ -1,0 +1,235 @@
+// Whole sweeps through the real `fldsim` program: every point runs once and lands in the study
+// table with exactly the numbers of its own result file; a second invocation runs nothing; a
+// changed base is refused before anything runs (nothing touched) and re-run only on request
+// (old files kept); an interrupted sweep resumes to the same numbers, bit for bit, as an
+// uninterrupted `fldsim run` of the point; and under mpirun the same study comes out.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <thread>
+
+#include "io/Summary.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+const char* kBase = R"(system:
+  shape: {plugin: sphere}
+  count: 27
+  volume_fraction: 0.1
+  init: {method: monte_carlo, seed: 1}
+flow: {peclet: 1}
+hydro: {plugin: free_draining}
+forces:
+  - {plugin: repulsion}
+run: {dt: 1.0e-3, duration: 0.4, time_unit: diffusive, threads: 1}
+observers:
+  - {plugin: stress, every: 5}
+output: unused.h5
+)";
+
+const char* kSweep = R"(base: base.yaml
+output_dir: results
+axes:
+  - flow.peclet: [0.5, 2]
+  - hydro.plugin: [free_draining, fld]
+)";
+
+struct Result {
+  int code = -1;
+  std::string output;
+};
+
+// Runs a shell command line, stdout and stderr together.
+Result run(const std::string& command) {
+  Result r;
+  FILE* p = popen((command + " 2>&1").c_str(), "r");
+  char buffer[4096];
+  while (std::size_t n = fread(buffer, 1, sizeof buffer, p)) r.output.append(buffer, n);
+  const int status = pclose(p);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  return r;
+}
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("fldsim-sweep-" + name + "-" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  std::ofstream(d / "base.yaml") << kBase;
+  std::ofstream(d / "study.yaml") << kSweep;
+  return d;
+}
+
+std::string sweep(const fs::path& dir, const std::string& options = "") {
+  return "cd " + dir.string() + " && " FLDSIM_EXE " sweep study.yaml " + options;
+}
+
+// study.csv as rows of column -> text.
+std::vector<std::map<std::string, std::string>> read_csv(const fs::path& file) {
+  std::ifstream in(file);
+  std::string line;
+  std::vector<std::string> header;
+  std::vector<std::map<std::string, std::string>> rows;
+  auto split = [](const std::string& s) {
+    std::vector<std::string> out(1);
+    for (char c : s)
+      if (c == ',')
+        out.emplace_back();
+      else
+        out.back() += c;
+    return out;
+  };
+  std::getline(in, line);
+  header = split(line);
+  while (std::getline(in, line)) {
+    const auto f = split(line);
+    std::map<std::string, std::string> row;
+    for (std::size_t i = 0; i < header.size() && i < f.size(); ++i) row[header[i]] = f[i];
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+double scalar(const fs::path& file, const std::string& name) {
+  for (const auto& s : fldsim::read_result_scalars(file.string()))
+    if (s.name == name) return s.value;
+  ADD_FAILURE() << name << " not in " << file;
+  return 0.0;
+}
+
+std::map<std::string, fs::file_time_type> times_of(const fs::path& dir) {
+  std::map<std::string, fs::file_time_type> t;
+  for (const auto& e : fs::directory_iterator(dir)) t[e.path().filename()] = fs::last_write_time(e.path());
+  return t;
+}
+
+TEST(Sweep, EveryPointRunsOnceAndTheStudyTableHoldsItsResults) {
+  const fs::path d = fresh_dir("local");
+  const Result first = run(sweep(d));
+  ASSERT_EQ(first.code, 0) << first.output;
+  const auto rows = read_csv(d / "results" / "study.csv");
+  ASSERT_EQ(rows.size(), 4u);
+  for (const auto& row : rows) {
+    EXPECT_EQ(row.at("status"), "done");
+    const fs::path h5 = d / "results" / (row.at("point") + ".h5");
+    ASSERT_TRUE(fs::exists(h5)) << h5;
+    // The table's number is the file's number (printed with 10 significant digits).
+    const double eta = scalar(h5, "stress/eta_r");
+    EXPECT_NEAR(std::stod(row.at("stress/eta_r")), eta, 1e-9 * std::abs(eta)) << row.at("point");
+    EXPECT_EQ(row.at("point"), "peclet-" + row.at("flow.peclet") + "_plugin-" + row.at("hydro.plugin"));
+  }
+  // Each point is the experiment `fldsim run --set` gives: same seed, same numbers.
+  const Result single =
+      run("cd " + d.string() +
+          " && " FLDSIM_EXE
+          " run base.yaml -q -o single.h5 --set flow.peclet=2 --set hydro.plugin=fld --set run.threads=1");
+  ASSERT_EQ(single.code, 0) << single.output;
+  EXPECT_EQ(scalar(d / "single.h5", "stress/eta_r"),
+            scalar(d / "results" / "peclet-2_plugin-fld.h5", "stress/eta_r"));
+
+  const auto before = times_of(d / "results");
+  const Result again = run(sweep(d));
+  ASSERT_EQ(again.code, 0) << again.output;
+  EXPECT_NE(again.output.find("0 to run, 0 to resume, 4 done, 0 changed"), std::string::npos) << again.output;
+  for (const auto& [name, t] : times_of(d / "results"))
+    if (name.rfind("study.", 0) != 0)
+      EXPECT_EQ(t, before.at(name)) << name << " was touched by a sweep with nothing to do";
+}
+
+TEST(Sweep, AChangedBaseIsRefusedBeforeAnythingRunsAndReRunOnlyOnRequest) {
+  const fs::path d = fresh_dir("changed");
+  ASSERT_EQ(run(sweep(d)).code, 0);
+  std::string base = kBase;
+  base.replace(base.find("duration: 0.4"), 13, "duration: 0.3");
+  std::ofstream(d / "base.yaml") << base;
+  const auto before = times_of(d / "results");
+  const Result refused = run(sweep(d));
+  EXPECT_EQ(refused.code, 2) << refused.output;
+  EXPECT_NE(refused.output.find("stored `run: {dt: 1.0e-3, duration: 0.4"), std::string::npos)
+      << refused.output;
+  EXPECT_NE(refused.output.find("4 point(s) have files of a different experiment"), std::string::npos);
+  EXPECT_EQ(times_of(d / "results"), before) << "a refused sweep must not touch any file";
+
+  const Result rerun = run(sweep(d, "--rerun-changed"));
+  ASSERT_EQ(rerun.code, 0) << rerun.output;
+  const fs::path old = d / "results" / "peclet-0.5_plugin-fld.h5.superseded";
+  ASSERT_TRUE(fs::exists(old)) << "the old result must be kept";
+  EXPECT_NE(scalar(old, "steps/accepted"),
+            scalar(d / "results" / "peclet-0.5_plugin-fld.h5", "steps/accepted"));
+}
+
+TEST(Sweep, AnInterruptedSweepResumesToTheNumbersOfAnUninterruptedRun) {
+  const fs::path d = fresh_dir("resume");
+  // One longer point, so that the signal arrives while it runs.
+  std::ofstream(d / "study.yaml") << "base: base.yaml\noutput_dir: results\naxes:\n  - run.duration: [60]\n"
+                                     "  - hydro.plugin: [fld]\n";
+  const pid_t pid = fork();
+  if (pid == 0) {
+    ::chdir(d.c_str());
+    ::freopen("sweep.log", "w", stderr);
+    execl(FLDSIM_EXE, FLDSIM_EXE, "sweep", "study.yaml", static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  const fs::path log = d / "results" / "duration-60_plugin-fld.log";
+  // Wait until the point has taken steps (its log shows the run's start), then interrupt.
+  for (int i = 0; i < 300; ++i) {
+    std::ifstream in(log);
+    std::stringstream s;
+    s << in.rdbuf();
+    if (s.str().find("steps") != std::string::npos) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  ::kill(pid, SIGINT);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status));
+  ASSERT_EQ(WEXITSTATUS(status), 130) << "an interrupted sweep says so with 128 + SIGINT";
+  ASSERT_TRUE(fs::exists(d / "results" / "duration-60_plugin-fld.h5.checkpoint"));
+  const auto partial = read_csv(d / "results" / "study.csv");
+  ASSERT_EQ(partial.size(), 1u);
+  EXPECT_EQ(partial[0].at("status"), "interrupted") << "partial results must be flagged in the study table";
+
+  const Result resumed = run(sweep(d));
+  ASSERT_EQ(resumed.code, 0) << resumed.output;
+  EXPECT_NE(resumed.output.find("1 to resume"), std::string::npos) << resumed.output;
+  EXPECT_TRUE(fs::exists(d / "results" / "duration-60_plugin-fld.h5.interrupted"))
+      << "the partial result is kept";
+
+  const Result straight = run(
+      "cd " + d.string() +
+      " && " FLDSIM_EXE
+      " run base.yaml -q -o straight.h5 --set run.duration=60 --set hydro.plugin=fld --set run.threads=1");
+  ASSERT_EQ(straight.code, 0) << straight.output;
+  EXPECT_EQ(scalar(d / "straight.h5", "stress/eta_r"),
+            scalar(d / "results" / "duration-60_plugin-fld.h5", "stress/eta_r"));
+  EXPECT_EQ(scalar(d / "straight.h5", "stress/Z"),
+            scalar(d / "results" / "duration-60_plugin-fld.h5", "stress/Z"));
+}
+
+TEST(Sweep, UnderMpirunTheSameStudyComesOut) {
+  const std::string mpirun = FLDSIM_MPIRUN;
+  if (mpirun.empty()) GTEST_SKIP() << "fldsim built without MPI (Debian: libopenmpi-dev openmpi-bin)";
+  const fs::path local = fresh_dir("mpi-local"), mpi = fresh_dir("mpi");
+  ASSERT_EQ(run(sweep(local)).code, 0);
+  const Result r = run("cd " + mpi.string() + " && " + mpirun +
+                       " --allow-run-as-root --oversubscribe -n 3 " FLDSIM_EXE " sweep study.yaml");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("over 3 MPI rank(s)"), std::string::npos) << r.output;
+  std::ifstream a(local / "results" / "study.csv"), b(mpi / "results" / "study.csv");
+  std::stringstream sa, sb;
+  sa << a.rdbuf();
+  sb << b.rdbuf();
+  EXPECT_EQ(sa.str(), sb.str()) << "the same points with the same seeds must give the same table";
+}
+
+}  // namespace
