@@ -87,6 +87,14 @@ double RadialHistogram::total_count(int k) const {
   return total_counts_[std::size_t(k)];
 }
 
+void RadialHistogram::append_blocks(const RadialHistogram& other) {
+  if (other.points_ != points_ || other.edges_.size() != edges_.size() ||
+      std::abs(other.width_ - width_) > 1e-12)
+    throw Error("g(r): cannot append the blocks of a histogram with other bins");
+  for (const auto& b : other.block_g_) block_g_.push_back(b);
+  for (std::size_t k = 0; k < total_counts_.size(); ++k) total_counts_[k] += other.total_counts_[k];
+}
+
 RadialHistogram RadialHistogram::rebinned(int factor) const {
   if (factor < 1 || bins() / factor < 1) throw Error("g(r): cannot merge bins by " + std::to_string(factor));
   const int n = bins() / factor;

@@ -24,6 +24,8 @@ class RadialHistogram {
   // Counts the pairs of s (node positions must be current for PairPoints::Nodes).
   void add_sample(const System& s);
   void end_block();  // closes the current block (ignored if it has no samples)
+  // Appends the closed blocks of `other` (same bins), e.g. independent runs as blocks.
+  void append_blocks(const RadialHistogram& other);
 
   PairPoints points() const { return points_; }
   int bins() const { return int(edges_.size()) - 1; }
