@@ -100,6 +100,10 @@ def load(paths):
     for path in paths:
         try:
             with h5py.File(path, "r") as h5:
+                if "parameters" not in h5:  # e.g. a sweep's study.h5 next to its runs
+                    print(f"plot_study.py: {path}: not a run's result file (no /parameters), skipped",
+                          file=sys.stderr)
+                    continue
                 row = {"file": path, "shape": fr.shape_label(h5), "phi": round(fr.number(h5, "volume_fraction"), 3),
                        "pe": fr.number(h5, "peclet")}
                 for h5path, _, key in QUANTITIES:
