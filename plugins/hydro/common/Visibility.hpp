@@ -3,6 +3,8 @@
 // centres leaves each node through a part of its surface that is not buried inside another node
 // of the same body. Buried pairs look through a neighbouring node of their own body; counting
 // them would double the lubrication of a dicolloid approached end-on.
+// The test is on/off: a pair's resistance jumps when an exit point crosses a sibling's surface, so
+// deterministic runs of multi-node bodies are first order at such events (bench/accuracy/README.md).
 #pragma once
 
 #include <vector>
