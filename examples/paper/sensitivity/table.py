@@ -13,6 +13,7 @@ decorrelation time are nearly independent, so this SE does not need the blocking
 import glob
 import math
 import os
+import re
 import sys
 
 import h5py
@@ -46,11 +47,19 @@ def blocks(h5):
     if g is None:
         return "", "", ""
     t, v = np.asarray(g["time"]), np.asarray(g["value"]) - 1.0
-    window = f"{t[0]:g}–{t[-1]:g}"
+    # The averages cover every sample the observer took (its state survives --resume); a resumed
+    # run's time series holds only the samples after the resume, so the blocks may cover less.
+    d = h5["results/orientation/delta_theta_m"]
+    match = re.search(r"mean over (\d+) samples", text(d.attrs.get("description", "")))
+    samples = int(match.group(1)) if match else len(t)
+    window = f"{t[-1] - (samples - 1) * generate.SAMPLE:g}–{t[-1]:g}"
     edges = np.arange(t[0], t[-1] + 1e-9, BLOCK)
     means = [v[(t >= a) & (t < a + BLOCK)].mean() for a in edges[:-1]]
     spread = f"{np.mean(means):+.3f} ± {np.std(means, ddof=1) / math.sqrt(len(means)):.3f}" if len(means) > 1 else "–"
-    return window, spread, " ".join(f"{m:+.3f}" for m in means)
+    listed = " ".join(f"{m:+.3f}" for m in means)
+    if samples != len(t):
+        listed += f" (resumed run: blocks over {t[0]:g}–{t[-1]:g} only)"
+    return window, spread, listed
 
 
 def row(path):
