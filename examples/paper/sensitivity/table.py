@@ -1,0 +1,79 @@
+#!/usr/bin/python3
+"""Table of the issue-12 sensitivity study (docs/paper-sensitivity.md) from its result files.
+
+usage: table.py [RESULTS_DIR]   (default: results/sensitivity of the repository)
+
+Per run: delta_theta_m, delta_phi_m, S_xx, S_yy, S_zz and N2 (mean +- the observers' blocking SE;
+'(np)' marks a value whose blocking found no plateau, so the SE is a lower bound), the averaging
+window in strains, the orientation decorrelation time, and the means of delta_theta_m over
+consecutive 20-strain blocks of the window (from the theta_m time series) to show whether the sign
+holds throughout the run, with the standard error of their mean (blocks longer than the
+decorrelation time are nearly independent, so this SE does not need the blocking plateau).
+"""
+import glob
+import math
+import os
+import sys
+
+import h5py
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+import generate  # noqa: E402
+
+QUANTITIES = [("orientation/delta_theta_m", "Δθ_m"), ("orientation/delta_phi_m", "Δφ_m"),
+              ("orientation/S_xx", "S_xx"), ("orientation/S_yy", "S_yy"), ("orientation/S_zz", "S_zz"),
+              ("stress/N2", "N2 (μγ̇)")]
+BLOCK = 20.0
+
+
+def text(v):
+    return v.decode() if isinstance(v, bytes) else str(v)
+
+
+def cell(h5, path):
+    d = h5.get("results/" + path)
+    if d is None:
+        return "–"
+    value, se = float(d[()]), float(d.attrs.get("stderr", math.nan))
+    flag = " (np)" if "no plateau" in text(d.attrs.get("description", "")) else ""
+    return f"{value:+.3f} ± {se:.3f}{flag}"
+
+
+def blocks(h5):
+    g = h5.get("timeseries/orientation/theta_m")
+    if g is None:
+        return "", "", ""
+    t, v = np.asarray(g["time"]), np.asarray(g["value"]) - 1.0
+    window = f"{t[0]:g}–{t[-1]:g}"
+    edges = np.arange(t[0], t[-1] + 1e-9, BLOCK)
+    means = [v[(t >= a) & (t < a + BLOCK)].mean() for a in edges[:-1]]
+    spread = f"{np.mean(means):+.3f} ± {np.std(means, ddof=1) / math.sqrt(len(means)):.3f}" if len(means) > 1 else "–"
+    return window, spread, " ".join(f"{m:+.3f}" for m in means)
+
+
+def row(path):
+    name = os.path.basename(path)[:-3]
+    with h5py.File(path, "r") as h5:
+        window, spread, block_means = blocks(h5)
+        d = h5.get("results/orientation/decorrelation_time")
+        tau = f"{float(d[()]):.1f}" if d is not None else "–"
+        return [name, window] + [cell(h5, q) for q, _ in QUANTITIES] + [tau, spread, block_means]
+
+
+def main():
+    root = sys.argv[1] if len(sys.argv) > 1 else os.path.join(HERE, "..", "..", "..", "results", "sensitivity")
+    order = ["brownian-" + v for v in generate.BROWNIAN] + ["nobrown-" + v for v in generate.NOBROWN]
+    files = {os.path.basename(p)[:-3]: p for p in glob.glob(os.path.join(root, "*.h5"))}
+    head = ["run", "strains averaged"] + [label for _, label in QUANTITIES] + \
+        ["decorrelation (strains)", f"Δθ_m ± SE of {BLOCK:g}-strain blocks", f"Δθ_m per {BLOCK:g}-strain block"]
+    print("| " + " | ".join(head) + " |")
+    print("|" + "---|" * len(head))
+    for name in order:
+        if name in files:
+            print("| " + " | ".join(row(files[name])) + " |")
+
+
+if __name__ == "__main__":
+    main()
