@@ -17,10 +17,10 @@
 // The step: dt = 2.5e-4 a^2/D0. The midpoint drift scheme leaves an O(dt) bias where the taper
 // (2.2-2.5 a) bends the mobility: with this potential at dt 1e-3 (N = 125, 40 a^2/D0) g is +1.5..+3.4 %
 // high over 2.24-2.38 a and 2.3..3.2 % low over 2.42-2.48 a (z up to 6, the comparison fails); at
-// 2.5e-4 no 0.02 a bin is off by more than 1.5 % (the dip at 2.42-2.48 a is -1.4 %, max |z| 3.5),
-// although over 40 a^2/D0 (bin SE 0.5 %) the chi-square still sees that last percent (p 8e-5).
-// That is below the resolution of the CI length here (bin SE about 1.5 %), so the positive tests
-// pass for that reason, not for an exact equilibrium. The dt study is in
+// 2.5e-4 no 0.02 a bin is off by more than 1.5 % (a dip of 1-1.5 % at 2.42-2.48 a, seen with two
+// seeds over 40 a^2/D0 at bin SE 0.5 %: chi-square p 8e-5 and 0.16), and at 1.25e-4 the dip is gone
+// (p 0.63). That last percent is below the resolution of the CI length here (bin SE about 1.5 %),
+// so the positive test passes for that reason. The dt study is in
 // docs/lubrication-taper.md; make validate (fldsim_validate_equilibrium) runs the long versions.
 //
 // The blocks are independent runs (compare_replicas): 8 runs of 0.5 + 1 a^2/D0, each from its own
