@@ -221,7 +221,10 @@ TEST(Sweep, UnderMpirunTheSameStudyComesOut) {
   if (mpirun.empty()) GTEST_SKIP() << "fldsim built without MPI (Debian: libopenmpi-dev openmpi-bin)";
   const fs::path local = fresh_dir("mpi-local"), mpi = fresh_dir("mpi");
   ASSERT_EQ(run(sweep(local)).code, 0);
-  const Result r = run("cd " + mpi.string() + " && " + mpirun +
+  // Under `make sanitize`, LeakSanitizer would report OpenMPI's own allocations kept until exit
+  // (not attributable: its components are unloaded by then); the sweep code's leaks are checked
+  // by the local-sweep tests, which run the same scheduler code paths without MPI.
+  const Result r = run("cd " + mpi.string() + " && ASAN_OPTIONS=\"$ASAN_OPTIONS:detect_leaks=0\" " + mpirun +
                        " --allow-run-as-root --oversubscribe -n 3 " FLDSIM_EXE " sweep study.yaml");
   ASSERT_EQ(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("over 3 MPI rank(s)"), std::string::npos) << r.output;

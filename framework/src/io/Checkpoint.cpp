@@ -44,7 +44,17 @@ std::vector<double> read_doubles(const H5::Group& g, const std::string& name, hs
     throw H5::DataSetIException("read_checkpoint", name + " claims " + std::to_string(rows) +
                                                        " rows, more than the file can hold (corrupt)");
   std::vector<double> v(rows * (cols ? cols : 1));
-  if (!v.empty()) d.read(v.data(), H5::PredType::NATIVE_DOUBLE);
+  if (v.empty()) return v;
+  // The stored layout must be what write_matrix makes (8-byte floats, contiguous, inside the
+  // file): HDF5 itself reads out of bounds on a corrupt file whose datatype or storage size
+  // disagrees with the dataspace (found by the fuzzer under AddressSanitizer).
+  const std::uintmax_t bytes = v.size() * sizeof(double);
+  const haddr_t offset = H5Dget_offset(d.getId());
+  if (d.getTypeClass() != H5T_FLOAT || d.getDataType().getSize() != sizeof(double) ||
+      d.getStorageSize() != bytes || offset == HADDR_UNDEF || offset > file_bytes ||
+      bytes > file_bytes - offset)
+    throw H5::DataSetIException("read_checkpoint", name + " is not stored as written (corrupt)");
+  d.read(v.data(), H5::PredType::NATIVE_DOUBLE);
   return v;
 }
 
