@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "ForceRate.hpp"
 #include "fldsim/rigid.hpp"
 
 namespace fldsim {
@@ -33,18 +34,7 @@ double ShortRangeRepulsion::range(const System& system) const {
 
 double ShortRangeRepulsion::prefactor(const System& system) const {
   const Physics& ph = system.physics();
-  const double a = 1.0;
-  // D0/a^2 = kT / (6 pi mu a^3); with kT = 0 only the shear rate is meaningful.
-  const double diffusive_rate = ph.kT / (6.0 * M_PI * ph.viscosity * a * a * a);
-  const double peclet = diffusive_rate > 0.0 ? ph.shear_rate / diffusive_rate : INFINITY;
-  double rate = 0.0;
-  if (unit_ == "diffusive")
-    rate = diffusive_rate;
-  else if (unit_ == "shear")
-    rate = ph.shear_rate;
-  else
-    rate = peclet < 1.0 ? diffusive_rate : ph.shear_rate;
-  return prefactor_star_ * 8.0 * M_PI * ph.viscosity * a * a * rate;
+  return prefactor_star_ * 8.0 * M_PI * ph.viscosity * force_rate(ph, unit_);  // a = 1
 }
 
 double ShortRangeRepulsion::magnitude(double gap, double prefactor, double delta_min, double delta_num) {

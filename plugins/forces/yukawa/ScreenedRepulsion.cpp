@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "ForceRate.hpp"
 #include "fldsim/rigid.hpp"
 
 namespace fldsim {
@@ -34,17 +35,7 @@ double ScreenedRepulsion::range(const System& system) const {
 
 double ScreenedRepulsion::amplitude(const System& system) const {
   const Physics& ph = system.physics();
-  const double a = 1.0;
-  const double diffusive_rate = ph.kT / (6.0 * M_PI * ph.viscosity * a * a * a);
-  const double peclet = diffusive_rate > 0.0 ? ph.shear_rate / diffusive_rate : INFINITY;
-  double rate = 0.0;
-  if (unit_ == "diffusive")
-    rate = diffusive_rate;
-  else if (unit_ == "shear")
-    rate = ph.shear_rate;
-  else
-    rate = peclet < 1.0 ? diffusive_rate : ph.shear_rate;
-  return strength_star_ * 6.0 * M_PI * ph.viscosity * a * a * rate;
+  return strength_star_ * 6.0 * M_PI * ph.viscosity * force_rate(ph, unit_);  // a = 1
 }
 
 double ScreenedRepulsion::pair_energy(const System& system, const NodePair& pair) const {
