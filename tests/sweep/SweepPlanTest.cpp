@@ -18,6 +18,8 @@ namespace fs = std::filesystem;
 std::string write_sweep(const std::string& name, const std::string& text) {
   const fs::path dir = fs::temp_directory_path() / ("fldsim-sweep-plan-" + std::to_string(::getpid()));
   fs::create_directories(dir);
+  std::ofstream(dir / "base.yaml")
+      << "# the base experiment the sweeps name (only its existence is checked here)\n";
   const fs::path p = dir / name;
   std::ofstream(p) << text;
   return p.string();
@@ -126,6 +128,11 @@ overrides:
 TEST(SweepPlan, MissingBaseIsNamed) {
   const std::string e = errors_of("axes:\n  - flow.peclet: [1]\n");
   EXPECT_NE(e.find("base: expected the base experiment file"), std::string::npos) << e;
+  // A base that is not there: one line at the key, not one per point.
+  const std::string absent = errors_of("base: nothere.yaml\naxes:\n  - flow.peclet: [1, 2]\n");
+  EXPECT_NE(absent.find(":1:7: base: '"), std::string::npos) << absent;
+  EXPECT_NE(absent.find("nothere.yaml' is not a readable file"), std::string::npos) << absent;
+  EXPECT_EQ(std::count(absent.begin(), absent.end(), '\n'), 0) << absent;
 }
 
 }  // namespace

@@ -217,8 +217,13 @@ SweepPlan read_sweep_plan(const std::string& file,
   if (!root["base"] || !root["base"].IsScalar())
     errors.add(root["base"] ? root["base"] : root, "base",
                "expected the base experiment file (relative to this file)");
-  else
+  else {
     plan.base = resolve(root["base"].Scalar());
+    std::error_code ec;
+    if (!fs::is_regular_file(plan.base, ec))
+      errors.add(root["base"], "base",
+                 "'" + plan.base + "' is not a readable file (the path is relative to this file)");
+  }
   plan.output_dir =
       resolve(root["output_dir"] && root["output_dir"].IsScalar() ? root["output_dir"].Scalar()
                                                                   : fs::path(file).stem().string());
