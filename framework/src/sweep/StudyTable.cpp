@@ -11,6 +11,7 @@
 #include "fldsim/error.hpp"
 #include "io/H5Helpers.hpp"
 #include "io/Summary.hpp"
+#include "sweep/StoredRun.hpp"
 
 namespace fldsim {
 namespace {
@@ -64,19 +65,6 @@ void write_doubles(H5::Group& g, const std::string& name, const std::vector<doub
   if (n) d.write(values.data(), H5::PredType::NATIVE_DOUBLE);
 }
 
-// A result file written when a signal stopped its run (RunExperiment's stop_early): its
-// numbers cover only part of the run.
-bool interrupted(const std::string& result_file) {
-  try {
-    H5::H5File f(result_file, H5F_ACC_RDONLY);
-    const H5::Group parameters = f.openGroup("/parameters");
-    return parameters.attrExists("run_status") &&
-           io::read_string_attribute(parameters, "run_status").rfind("interrupted", 0) == 0;
-  } catch (const H5::Exception&) {
-    return false;
-  }
-}
-
 }  // namespace
 
 StudyFiles write_study_table(const SweepPlan& plan) {
@@ -101,7 +89,13 @@ StudyFiles write_study_table(const SweepPlan& plan) {
           }
           r.results[s.name] = s;
         }
-        r.status = interrupted(out) ? "interrupted" : "done";
+        bool interrupted = false;
+        try {
+          interrupted = read_stored_run(out).interrupted;
+        } catch (const H5::Exception&) {
+          interrupted = false;  // its scalars were readable; the run status is only a flag
+        }
+        r.status = interrupted ? "interrupted" : "done";
         ++(r.status == "done" ? files.with_results : files.partial);
       } catch (const Error& e) {
         r.status = "unreadable";

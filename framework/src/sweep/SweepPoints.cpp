@@ -14,9 +14,9 @@
 #include "config/ConfigErrors.hpp"
 #include "config/RunCheck.hpp"
 #include "fldsim/error.hpp"
-#include "io/H5Helpers.hpp"
 #include "plugins/PluginRegistry.hpp"
 #include "run/Experiment.hpp"
+#include "sweep/StoredRun.hpp"
 
 namespace fldsim {
 namespace {
@@ -46,16 +46,6 @@ std::string point_errors(const std::string& text, const SweepPoint& p) {
   }
   if (!out.empty()) out.pop_back();
   return out;
-}
-
-// The experiment a result file holds, and whether its run was stopped by a signal.
-std::string stored_experiment(const std::string& result_file, bool& interrupted) {
-  io::quiet_hdf5();
-  H5::H5File f(result_file, H5F_ACC_RDONLY);
-  const H5::Group parameters = f.openGroup("/parameters");
-  interrupted = parameters.attrExists("run_status") &&
-                io::read_string_attribute(parameters, "run_status").rfind("interrupted", 0) == 0;
-  return io::read_string_dataset(parameters, "experiment");
 }
 
 // "stored `run: {duration: 0.4}`, now `run: {duration: 0.5}`": the first line that differs.
@@ -129,16 +119,16 @@ std::vector<PointState> check_sweep_points(const SweepPlan& plan) {
       st.hydro = ex.hydro.name;
       std::error_code ec;
       RunTargets targets{st.output, false, ""};
-      std::string then;
-      bool interrupted = false;
+      StoredRun stored;  // empty experiment: no readable result
       if (fs::exists(st.output, ec)) {
         try {
-          then = stored_experiment(st.output, interrupted);
+          stored = read_stored_run(st.output);
         } catch (const H5::Exception&) {
-          then = "";
+          stored = StoredRun{};
         }
       }
-      st.interrupted_output = interrupted && fs::exists(st.checkpoint, ec);
+      const std::string& then = stored.experiment;
+      st.interrupted_output = stored.interrupted && fs::exists(st.checkpoint, ec);
       if (fs::exists(st.output, ec) && !st.interrupted_output) {
         if (then == ex.resolved_yaml) {
           st.status = PointStatus::Done;
