@@ -31,9 +31,11 @@ TEST(IsolatedRead, AReaderThatReturnsOrThrowsPasses) {
 }
 
 TEST(IsolatedRead, ACrashIsOneLineNamingTheFile) {
+  // Under AddressSanitizer its own SIGSEGV handler turns the signal into exit(1): either way the
+  // same one line.
   const std::string segv = refusal([] { std::raise(SIGSEGV); });
-  EXPECT_EQ(segv.rfind("bad.h5: result file is damaged: reading it crashed the HDF5 library (", 0), 0u)
-      << segv;
+  EXPECT_EQ(segv.rfind("bad.h5: result file is damaged: reading it ", 0), 0u) << segv;
+  EXPECT_NE(segv.find("; the file is not used"), std::string::npos) << segv;
   EXPECT_NE(refusal([] { std::abort(); }).find("crashed"), std::string::npos);
   // What AddressSanitizer does on a heap overflow: report, then exit(1).
   const std::string asan = refusal([] { ::_exit(1); });
