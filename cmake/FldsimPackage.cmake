@@ -1,8 +1,8 @@
 # Installs the CMake package (lib/cmake/fldsim): exported targets, config and version files,
 # and the plugin function, so that a third-party project can write
 #   find_package(fldsim 0.1 REQUIRED)
-#   fldsim_add_plugin(yukawa KIND force SOURCES ...)
-# The targets themselves are installed where they are defined (framework/, plugins/).
+#   fldsim_add_plugin(yukawa KIND force SOURCES ... [LIBRARIES fldsim::lubrication ...])
+# The targets themselves are installed where they are defined (framework/, sdk/, plugins/).
 include(CMakePackageConfigHelpers)
 
 set(FLDSIM_CMAKE_INSTALL_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/fldsim)
@@ -13,6 +13,9 @@ string(REGEX REPLACE ".*FLDSIM_API_MAJOR ([0-9]+).*" "\\1" FLDSIM_API_MAJOR "${a
 string(REGEX REPLACE ".*FLDSIM_API_MINOR ([0-9]+).*" "\\1" FLDSIM_API_MINOR "${api_lines}")
 
 install(EXPORT fldsimTargets NAMESPACE fldsim:: DESTINATION ${FLDSIM_CMAKE_INSTALL_DIR})
+
+# The SDK support libraries (sdk/CMakeLists.txt), for the config file's COMPONENTS check.
+get_property(FLDSIM_SDK_LIBRARIES GLOBAL PROPERTY FLDSIM_SDK_LIBRARIES)
 
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/fldsimConfig.cmake.in
   ${PROJECT_BINARY_DIR}/fldsimConfig.cmake

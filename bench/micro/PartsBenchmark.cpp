@@ -8,8 +8,8 @@
 #include <memory>
 
 #include "BenchScene.hpp"
-#include "ResistanceModel.hpp"
 #include "dynamics/BodyMotion.hpp"
+#include "fldsim-sdk/lubrication/ResistanceModel.hpp"
 
 using namespace fldsim;
 using namespace fldsim::bench;

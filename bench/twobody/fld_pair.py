@@ -1,4 +1,4 @@
-"""An independent Python statement of the FLD pair model of plugins/hydro (LubricationPair.cpp,
+"""An independent Python statement of the FLD pair model of sdk/lubrication (LubricationPair.cpp,
 BodyResistance.cpp) for two equal isolated spheres, in every convention: the isolated-sphere drag
 (6 pi mu a, 8 pi mu a^3; `lubrication` plugin, or `fld` at phi -> 0) plus the lubrication modes
   squeeze  c_sq = 6 pi mu a (1/(4 xi) + 9/40 ln(1/xi))     on d.(u2 - u1)

@@ -24,8 +24,8 @@
 #include <string>
 #include <vector>
 
-#include "ResistanceModel.hpp"
 #include "dynamics/Scene.hpp"
+#include "fldsim-sdk/lubrication/ResistanceModel.hpp"
 #include "geometry/HardBodyMonteCarlo.hpp"
 
 namespace fldsim {

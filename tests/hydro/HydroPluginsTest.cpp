@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "HydroTestSupport.hpp"
-#include "ResistanceModel.hpp"
+#include "fldsim-sdk/lubrication/ResistanceModel.hpp"
 #include "fldsim/hydro.hpp"
 #include "plugins/PluginRegistry.hpp"
 

@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "HydroTestSupport.hpp"
-#include "LubricationPair.hpp"
+#include "fldsim-sdk/lubrication/LubricationPair.hpp"
 
 using namespace fldsim;
 using namespace fldsim::hydro;

@@ -9,7 +9,7 @@
 #endif
 
 #include "HydroTestSupport.hpp"
-#include "ResistanceModel.hpp"
+#include "fldsim-sdk/lubrication/ResistanceModel.hpp"
 
 using namespace fldsim;
 using namespace fldsim::hydro;

@@ -18,8 +18,8 @@
 #include <map>
 #include <sstream>
 
-#include "ResistanceModel.hpp"
 #include "TwoSphereFreePair.hpp"
+#include "fldsim-sdk/lubrication/ResistanceModel.hpp"
 
 using namespace fldsim;
 using namespace fldsim::hydro;

@@ -7,7 +7,7 @@
 #include <set>
 
 #include "HydroTestSupport.hpp"
-#include "Visibility.hpp"
+#include "fldsim-sdk/lubrication/Visibility.hpp"
 
 using namespace fldsim;
 using namespace fldsim::hydro;

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <random>
 
-#include "BlockAverage.hpp"
+#include "fldsim-sdk/statistics/BlockAverage.hpp"
 
 using fldsim::observers::BlockAverage;
 

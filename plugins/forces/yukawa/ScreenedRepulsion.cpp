@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "ForceRate.hpp"
+#include "fldsim-sdk/forces/ForceRate.hpp"
 #include "fldsim/rigid.hpp"
 
 namespace fldsim {

@@ -1,6 +1,6 @@
 // Fast Lubrication Dynamics (Kumar & Higdon 2010): R_FU = R_0(phi) + R_delta, with the isotropic
 // R_0(phi) fitted to hard-sphere short-time diffusivities (r0_fit), phi = the true volume fraction.
-#include "ResistanceModel.hpp"
+#include "fldsim-sdk/lubrication/ResistanceModel.hpp"
 #include "fldsim/plugin.hpp"
 
 namespace {

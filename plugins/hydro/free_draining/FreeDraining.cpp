@@ -1,7 +1,7 @@
 // Free draining: every node has the isolated-sphere drag 6 pi mu a, 8 pi mu a^3 and sits in the
 // ambient strain; a body's resistance is the rigid-body sum over its nodes. No interactions
 // between bodies, so each body is solved directly (6x6 Cholesky).
-#include "ResistanceModel.hpp"
+#include "fldsim-sdk/lubrication/ResistanceModel.hpp"
 #include "fldsim/plugin.hpp"
 
 namespace {

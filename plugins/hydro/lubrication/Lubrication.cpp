@@ -1,6 +1,6 @@
 // Pairwise lubrication (Jeffrey-Onishi near-field modes between visible node pairs) plus the
 // isolated-sphere drag of the node radius per body, without the FLD phi correction.
-#include "ResistanceModel.hpp"
+#include "fldsim-sdk/lubrication/ResistanceModel.hpp"
 #include "fldsim/plugin.hpp"
 
 namespace {

@@ -1,0 +1,82 @@
+// The hydrodynamic model shared by the three hydro plugins: body resistance
+//     R_FU = R_0 + R_delta,
+// with R_0 the isotropic part (IsotropicResistance) and R_delta the pairwise lubrication
+// (BodyResistance, optional). Brownian forces F_B = sqrt(2 kT/dt) (A alpha + sum_p B_p beta_p)
+// with A the Cholesky factor of each body's R_0 block; solve by block-Jacobi PCG, or directly per
+// body when there is no lubrication (free draining).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fldsim-sdk/lubrication/BodyResistance.hpp"
+#include "fldsim-sdk/lubrication/IsotropicResistance.hpp"
+#include "fldsim/block_sparse.hpp"
+#include "fldsim/hydro.hpp"
+#include "fldsim/params.hpp"
+
+namespace fldsim::hydro {
+
+// The phi correction of R_0: none (isolated spheres), Kumar & Higdon's fit made with the LAMMPS
+// lubrication forms (reference §1a), or fldsim's refit for its Jeffrey-Onishi forms.
+enum class IsotropicFit { None, KumarHigdon, Fldsim };
+// `tapered`: the lubrication has the smooth taper (fldsim's fit differs for the two cutoff forms).
+IsotropicFactors isotropic_factors(IsotropicFit fit, double phi, bool tapered = false);
+
+struct ModelSettings {
+  bool lubrication = true;
+  IsotropicForm isotropic = IsotropicForm::Sphere;
+  IsotropicFit fit = IsotropicFit::None;          // which R_0(phi) correction (fld)
+  std::optional<IsotropicFactors> fixed_factors;  // calibration only: use these, ignore fit
+  LubricationOptions lub;
+  double tolerance = 1e-6;
+  int max_iterations = 1000;
+  Preconditioner preconditioner = Preconditioner::IncompleteCholesky;
+};
+
+// Declare and read the parameters common to lubrication and fld. `conventions: lammps` presets
+// the pair forms of LAMMPS pair lubricateU (pump, twist, lever, strain arm, no taper); a key set
+// explicitly to a different value is an error.
+void describe_lubrication_params(ParamSchema& schema);
+ModelSettings read_lubrication_params(const Params& params);
+// True when `conventions: lammps` was chosen (fld also presets r0_fit from it).
+bool lammps_conventions(const Params& params);
+// The value of choice `key`: the user's if given, else `preset` under conventions: lammps, else
+// the schema default. A given value that contradicts the preset is a configuration error.
+const std::string& convention_choice(const Params& params, const std::string& key, const std::string& preset);
+
+class ResistanceModel : public HydroModel {
+ public:
+  explicit ResistanceModel(ModelSettings settings) : settings_(settings), pcg_(settings.preconditioner) {}
+
+  double pair_range(const System& system) const override;
+  std::vector<std::string> configure(const System& system, const HydroRequest& request) override;
+  void assemble(const System& system, const NodePairList& pairs) override;
+  void brownian_force(const System& system, const NodePairList& pairs, const RandomStream& noise, double dt,
+                      double* FB) override;
+  void solve(const System& system, const double* F, double* dU) override;
+  SolveStats last_solve() const override { return stats_; }
+  bool provides_stresslets() const override { return true; }
+  Eigen::Matrix3d stresslet_sum(const System& system, const NodePairList& pairs, const double* dU) override;
+
+  // For tests: the assembled R_FU and R_FE:E_inf.
+  const BlockSparseMatrix& resistance() const { return A_; }
+  const std::vector<double>& strain_force() const { return strain_force_; }
+  const BodyResistance& lubrication() const { return lub_; }
+
+ private:
+  ModelSettings settings_;
+  HydroRequest request_;
+  Eigen::Matrix3d E_ = Eigen::Matrix3d::Zero();
+  IsotropicResistance iso_;
+  BodyResistance lub_;
+  BlockSparseMatrix A_;
+  BlockPCG pcg_;
+  std::vector<double> strain_force_, rhs_;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> body_pairs_;  // pattern scratch
+  SolveStats stats_;
+  bool configured_ = false;
+};
+
+}  // namespace fldsim::hydro

@@ -1,0 +1,28 @@
+#include "fldsim-sdk/lubrication/Visibility.hpp"
+
+namespace fldsim::hydro {
+
+namespace {
+// True if the point p (relative to the body centre) lies strictly inside a node other than `self`.
+bool buried(const Vec3& p, const Vec3* offsets, const double* radii, std::size_t nodes, std::size_t self) {
+  for (std::size_t k = 0; k < nodes; ++k) {
+    if (k == self) continue;
+    if ((p - offsets[k]).squaredNorm() < radii[k] * radii[k]) return true;
+  }
+  return false;
+}
+}  // namespace
+
+bool nodes_visible(const Vec3* offsets_i, const Vec3* offsets_j, const double* radii, std::size_t nodes,
+                   std::size_t a, std::size_t b, const Vec3& r, double cutoff) {
+  const double dist = r.norm();
+  const double abar = 0.5 * (radii[a] + radii[b]);
+  if (dist >= cutoff * abar) return false;
+  const Vec3 d = r / dist;
+  // Exit points of the centre-to-centre segment on each node's surface, in its body's frame.
+  const Vec3 exit_i = offsets_i[a] + radii[a] * d;
+  const Vec3 exit_j = offsets_j[b] - radii[b] * d;
+  return !buried(exit_i, offsets_i, radii, nodes, a) && !buried(exit_j, offsets_j, radii, nodes, b);
+}
+
+}  // namespace fldsim::hydro
