@@ -13,7 +13,7 @@
 // lands at (sqrt(x) + s xi)^2 + s^2 xi^2 >= 0 with s^2 = 2 D0 dt / a, far above the 1e-5 a gap
 // clamp; without the clamp contact is never reached in continuous time either). So FLD samples
 // exp(-U/kT) restricted to no overlaps, which the oracle's hard core samples; against the full
-// distribution the first shell is 1-5 % high (1.6 % of it the oracles' own difference). With the
+// distribution the first shell is 1-5 % high (1.5 % of it the oracles' own difference). With the
 // hard core the contact shell 2.00-2.05 a is 0.997 +- 0.005 at dt 2.5e-4 (40 a^2/D0).
 //
 // The step: dt = 2.5e-4 a^2/D0. The midpoint drift scheme leaves an O(dt) bias where the taper
