@@ -113,13 +113,13 @@ BrownianEquilibrium run_brownian_replicas(const EquilibriumScene& scene, Brownia
   out.g = oracle::RadialHistogram(oracle::PairPoints::BodyCentres, opt.bin_width, opt.r_max);
   out.min_gap = INFINITY;
   opt.blocks = 1;
-  opt.stress_every = 0;
   const std::uint64_t first = opt.seed;
   for (int k = 0; k < runs; ++k) {
     opt.seed = first + std::uint64_t(k);
     const BrownianEquilibrium r = run_brownian(scene, opt);
     out.g.append_blocks(r.g);
     out.Z_blocks.push_back(r.Z.mean);
+    if (opt.stress_every > 0) out.Z_observer_blocks.push_back(r.Z_observer);
     out.steps += r.steps;
     out.accepted += r.accepted;
     out.rejected += r.rejected;
@@ -127,6 +127,11 @@ BrownianEquilibrium run_brownian_replicas(const EquilibriumScene& scene, Brownia
     out.seconds += r.seconds;
   }
   out.Z = oracle::block_mean(out.Z_blocks);
+  if (opt.stress_every > 0) {
+    const oracle::MeanError z = oracle::block_mean(out.Z_observer_blocks);
+    out.Z_observer = z.mean;
+    out.Z_observer_se = z.se;
+  }
   return out;
 }
 

@@ -53,6 +53,7 @@ struct BrownianEquilibrium {
   std::vector<double> Z_blocks;  // configurational molecular virial
   oracle::MeanError Z;
   double Z_observer = 0.0, Z_observer_se = 0.0;  // from the stress observer (if stress_every > 0)
+  std::vector<double> Z_observer_blocks;         // replicas: each run's observer Z (one block each)
   std::int64_t steps = 0;                        // frames (= steps at a fixed dt)
   std::int64_t accepted = 0;                     // time steps taken
   std::int64_t rejected = 0;  // step attempts the loop rejected (0 for an undisturbed fixed-step run)
@@ -64,7 +65,8 @@ BrownianEquilibrium run_brownian(const EquilibriumScene& scene, const BrownianOp
 // Independent runs as the blocks: run k = 0..runs-1 has seed opt.seed + k (its own hard-body
 // Monte Carlo start and noise), relaxes for `equilibrate`, is sampled for `duration` into one
 // block. g, Z and the counters are pooled (steps, accepted, rejected, seconds summed; min_gap the
-// smallest); the stress observer is not used.
+// smallest). With stress_every > 0 each run's stress-observer Z is one block (Z_observer_blocks):
+// Z_observer and Z_observer_se are the mean and SE of those run means (sd / sqrt(runs)).
 BrownianEquilibrium run_brownian_replicas(const EquilibriumScene& scene, BrownianOptions opt, int runs);
 oracle::OracleResult run_scene_oracle(const EquilibriumScene& scene, const oracle::OracleOptions& opt);
 
