@@ -135,5 +135,25 @@ TEST(SweepPlan, MissingBaseIsNamed) {
   EXPECT_EQ(std::count(absent.begin(), absent.end(), '\n'), 0) << absent;
 }
 
+// A path in the sweep file is relative to the sweep file, whatever the current directory (the
+// rule of experiment files); before, it went to `fldsim run --set` as written and was resolved
+// against the current directory.
+TEST(SweepPlan, PathValuesAreRelativeToTheSweepFile) {
+  const std::string file = write_sweep("paths.yaml", R"(base: base.yaml
+axes:
+  - system.init.file: [starts/a.h5, /abs/b.h5]
+overrides:
+  - when: {system.init.file: starts/a.h5}
+    set: {plugins.paths: [mine, /opt/theirs]}
+)");
+  const SweepPlan plan = read_sweep_plan(file, seeds);
+  ASSERT_EQ(plan.points.size(), 2u);
+  const fs::path dir = fs::path(file).parent_path();
+  EXPECT_EQ(value_of(plan.points[0], "system.init.file"), (dir / "starts/a.h5").string());
+  EXPECT_EQ(value_of(plan.points[0], "plugins.paths"), "[" + (dir / "mine").string() + ", /opt/theirs]");
+  EXPECT_EQ(value_of(plan.points[1], "system.init.file"), "/abs/b.h5");
+  EXPECT_EQ(plan.points[0].label, "file-starts_a.h5") << "labels keep the values as written";
+}
+
 }  // namespace
 }  // namespace fldsim

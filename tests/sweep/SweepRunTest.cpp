@@ -2,16 +2,19 @@
 // table with exactly the numbers of its own result file; a second invocation runs nothing; a
 // changed base is refused before anything runs (nothing touched) and re-run only on request
 // (old files kept); an interrupted sweep resumes to the same numbers, bit for bit, as an
-// uninterrupted `fldsim run` of the point; and under mpirun the same study comes out.
+// uninterrupted `fldsim run` of the point; under mpirun the same study comes out; and a rank
+// that dies loses no point.
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <sstream>
 #include <thread>
@@ -106,6 +109,37 @@ double scalar(const fs::path& file, const std::string& name) {
   return 0.0;
 }
 
+// Processes whose command line contains `text` (the /proc scan `pgrep -f` does).
+std::vector<pid_t> processes_with(const std::string& text) {
+  std::vector<pid_t> out;
+  for (const auto& e : fs::directory_iterator("/proc")) {
+    const std::string name = e.path().filename();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::ifstream in(e.path() / "cmdline");
+    std::string cmd((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::replace(cmd.begin(), cmd.end(), '\0', ' ');
+    if (cmd.find(text) != std::string::npos) out.push_back(pid_t(std::stol(name)));
+  }
+  return out;
+}
+
+pid_t parent_of(pid_t pid) {
+  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
+  std::string stat((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::istringstream fields(stat.substr(stat.rfind(')') + 2));
+  char state;
+  pid_t ppid = 0;
+  fields >> state >> ppid;
+  return ppid;
+}
+
+bool log_shows_steps(const fs::path& log) {
+  std::ifstream in(log);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str().find("step ") != std::string::npos;
+}
+
 std::map<std::string, fs::file_time_type> times_of(const fs::path& dir) {
   std::map<std::string, fs::file_time_type> t;
   for (const auto& e : fs::directory_iterator(dir)) t[e.path().filename()] = fs::last_write_time(e.path());
@@ -141,8 +175,9 @@ TEST(Sweep, EveryPointRunsOnceAndTheStudyTableHoldsItsResults) {
   ASSERT_EQ(again.code, 0) << again.output;
   EXPECT_NE(again.output.find("0 to run, 0 to resume, 4 done, 0 changed"), std::string::npos) << again.output;
   for (const auto& [name, t] : times_of(d / "results"))
-    if (name.rfind("study.", 0) != 0)
+    if (name.rfind("study.", 0) != 0) {
       EXPECT_EQ(t, before.at(name)) << name << " was touched by a sweep with nothing to do";
+    }
 }
 
 TEST(Sweep, AChangedBaseIsRefusedBeforeAnythingRunsAndReRunOnlyOnRequest) {
@@ -233,6 +268,74 @@ TEST(Sweep, UnderMpirunTheSameStudyComesOut) {
   sa << a.rdbuf();
   sb << b.rdbuf();
   EXPECT_EQ(sa.str(), sb.str()) << "the same points with the same seeds must give the same table";
+}
+
+// A rank that dies (kill -9, as a lost node) loses no point: its running point stops with a
+// checkpoint instead of running on as an orphan that would write the files the next invocation
+// resumes (measured before the fix: the orphan ran to its end after mpirun had exited), and the
+// next invocation finishes the study with exactly the numbers of an uninterrupted run.
+TEST(Sweep, ARankThatDiesLosesNoPointAndTheNextInvocationResumesIt) {
+  const std::string mpirun = FLDSIM_MPIRUN;
+  if (mpirun.empty()) GTEST_SKIP() << "fldsim built without MPI (Debian: libopenmpi-dev openmpi-bin)";
+  const fs::path d = fresh_dir("rank-death");
+  const std::string out_dir = "results-rank-death-" + std::to_string(::getpid());
+  std::ofstream(d / "study.yaml") << "base: base.yaml\noutput_dir: " << out_dir
+                                  << "\naxes:\n  - run.duration: [60]\n  - flow.peclet: [0.5, 2]\n"
+                                     "  - hydro.plugin: [fld]\n";
+  const pid_t launcher = fork();
+  if (launcher == 0) {
+    ::chdir(d.c_str());
+    ::freopen("mpirun.log", "w", stdout);
+    ::freopen("mpirun.log", "a", stderr);
+    ::setenv("ASAN_OPTIONS",
+             (std::string(getenv("ASAN_OPTIONS") ? getenv("ASAN_OPTIONS") : "") + ":detect_leaks=0").c_str(),
+             1);
+    execl("/bin/sh", "sh", "-c",
+          (mpirun + " --allow-run-as-root --oversubscribe -n 2 " FLDSIM_EXE " sweep study.yaml").c_str(),
+          static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  const fs::path results = d / out_dir;
+  const std::string first = "duration-60_peclet-0.5_plugin-fld", second = "duration-60_peclet-2_plugin-fld";
+  for (int i = 0; i < 600 && !(log_shows_steps(results / (first + ".log")) &&
+                               log_shows_steps(results / (second + ".log")));
+       ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  // The rank running the first point: the parent of its `fldsim run`.
+  const std::vector<pid_t> point = processes_with("-o " + out_dir + "/" + first + ".h5");
+  ASSERT_EQ(point.size(), 1u) << "the first point is not running";
+  const pid_t rank = parent_of(point[0]);
+  ASSERT_GT(rank, 1);
+  ::kill(rank, SIGKILL);
+  int status = 0;
+  waitpid(launcher, &status, 0);
+  EXPECT_NE(WEXITSTATUS(status), 0) << "mpirun reports the dead rank";
+  // No point may run on after its rank: both stop within two seconds (a step and a checkpoint),
+  // long before an orphan could finish (each point is about 25 s of work).
+  bool orphans = true;
+  for (int i = 0; i < 20 && orphans; ++i) {
+    orphans = !processes_with("-o " + out_dir + "/").empty();
+    if (orphans) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  EXPECT_FALSE(orphans) << "a point outlived its rank";
+  std::ifstream log(results / (first + ".log"));
+  const std::string text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("interrupted by SIGTERM"), std::string::npos) << "the point must stop checkpointed:\n"
+                                                                    << text;
+  ASSERT_TRUE(fs::exists(results / (first + ".h5.checkpoint")));
+
+  const Result again =
+      run("cd " + d.string() + " && ASAN_OPTIONS=\"$ASAN_OPTIONS:detect_leaks=0\" " + mpirun +
+          " --allow-run-as-root --oversubscribe -n 2 " FLDSIM_EXE " sweep study.yaml");
+  ASSERT_EQ(again.code, 0) << again.output;
+  EXPECT_NE(again.output.find("2 of 2 points done"), std::string::npos) << again.output;
+  const Result straight = run("cd " + d.string() +
+                              " && " FLDSIM_EXE
+                              " run base.yaml -q -o straight.h5 --set run.duration=60 --set flow.peclet=0.5 "
+                              "--set hydro.plugin=fld --set run.threads=1");
+  ASSERT_EQ(straight.code, 0) << straight.output;
+  EXPECT_EQ(scalar(d / "straight.h5", "stress/eta_r"), scalar(results / (first + ".h5"), "stress/eta_r"));
+  EXPECT_EQ(scalar(d / "straight.h5", "stress/Z"), scalar(results / (first + ".h5"), "stress/Z"));
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 
 #include "fldsim/error.hpp"
 #include "io/H5Helpers.hpp"
+#include "io/IsolatedRead.hpp"
 
 namespace fldsim {
 
@@ -169,7 +170,9 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
   fsync_path(dir.empty() ? "." : dir, true);
 }
 
-Checkpoint read_checkpoint(const std::string& path) {
+namespace {
+
+Checkpoint read_checkpoint_in_process(const std::string& path) {
   io::quiet_hdf5();
   if (!std::filesystem::exists(path)) throw Error(path + ": checkpoint file not found");
   Checkpoint c;
@@ -220,6 +223,15 @@ Checkpoint read_checkpoint(const std::string& path) {
   if (c.orientations.size() != n || c.displacement.size() != n || c.nonaffine.size() != n)
     throw Error(path + ": checkpoint arrays have different body counts");
   return c;
+}
+
+}  // namespace
+
+Checkpoint read_checkpoint(const std::string& path) {
+  io::quiet_hdf5();
+  if (!std::filesystem::exists(path)) throw Error(path + ": checkpoint file not found");
+  io::probe_read_in_child(path, "checkpoint", [&] { read_checkpoint_in_process(path); });
+  return read_checkpoint_in_process(path);
 }
 
 }  // namespace fldsim

@@ -5,6 +5,7 @@
 #include "fldsim/error.hpp"
 #include "fldsim/trajectory_layout.hpp"
 #include "io/H5Helpers.hpp"
+#include "io/IsolatedRead.hpp"
 
 namespace fldsim {
 
@@ -51,7 +52,9 @@ std::vector<double> last_sample(const H5::H5File& file, const std::string& eleme
 
 }  // namespace
 
-Checkpoint read_last_frame(const std::string& result_h5) {
+namespace {
+
+Checkpoint read_last_frame_in_process(const std::string& result_h5) {
   io::quiet_hdf5();
   if (!std::filesystem::exists(result_h5)) throw Error(result_h5 + ": result file not found");
   Checkpoint c;
@@ -86,6 +89,15 @@ Checkpoint read_last_frame(const std::string& result_h5) {
     io::fail(result_h5, "cannot read the last trajectory frame", e);
   }
   return c;
+}
+
+}  // namespace
+
+Checkpoint read_last_frame(const std::string& result_h5) {
+  io::quiet_hdf5();
+  if (!std::filesystem::exists(result_h5)) throw Error(result_h5 + ": result file not found");
+  io::probe_read_in_child(result_h5, "result file", [&] { read_last_frame_in_process(result_h5); });
+  return read_last_frame_in_process(result_h5);
 }
 
 }  // namespace fldsim

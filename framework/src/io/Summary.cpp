@@ -8,6 +8,7 @@
 
 #include "fldsim/error.hpp"
 #include "io/H5Helpers.hpp"
+#include "io/IsolatedRead.hpp"
 
 namespace fldsim {
 
@@ -82,7 +83,9 @@ void format_with_error(double value, double stderr_value, std::string& value_tex
   }
 }
 
-std::vector<ResultScalar> read_result_scalars(const std::string& path) {
+namespace {
+
+std::vector<ResultScalar> read_result_scalars_in_process(const std::string& path) {
   io::quiet_hdf5();
   if (!std::filesystem::exists(path)) throw Error(path + ": file not found");
   std::vector<ResultScalar> scalars;
@@ -96,6 +99,15 @@ std::vector<ResultScalar> read_result_scalars(const std::string& path) {
     io::fail(path, "cannot read the result file", e);
   }
   return scalars;
+}
+
+}  // namespace
+
+std::vector<ResultScalar> read_result_scalars(const std::string& path) {
+  io::quiet_hdf5();
+  if (!std::filesystem::exists(path)) throw Error(path + ": file not found");
+  io::probe_read_in_child(path, "result file", [&] { read_result_scalars_in_process(path); });
+  return read_result_scalars_in_process(path);
 }
 
 int print_summary(const std::string& path, std::ostream& out) {
@@ -140,5 +152,6 @@ int print_summary(const std::string& path, std::ostream& out) {
            "too short for it\n";
   return 0;
 }
+
 
 }  // namespace fldsim

@@ -1,8 +1,11 @@
 #include "run/StopRequest.hpp"
 
 #include <signal.h>
+#include <sys/prctl.h>
+#include <unistd.h>
 
 #include <csignal>
+#include <cstdlib>
 
 namespace fldsim {
 
@@ -29,6 +32,13 @@ void StopRequest::install() {
   action.sa_flags = SA_RESTART;  // an interrupted write or read resumes; the flag is read between steps
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
+  // A point of `fldsim sweep` (sweep/PointProcess.cpp) stops as on SIGTERM, checkpointed, when
+  // the sweep process that started it dies (an MPI rank killed, a node lost): otherwise it would
+  // run on as an orphan and write its files while the next invocation resumes the same point.
+  if (const char* parent = std::getenv(kStopWithParent)) {
+    ::prctl(PR_SET_PDEATHSIG, SIGTERM);
+    if (::getppid() != static_cast<pid_t>(std::atol(parent))) received = SIGTERM;  // already gone
+  }
 }
 
 int StopRequest::signal() {

@@ -13,6 +13,7 @@
 #include <fstream>
 
 #include "fldsim/error.hpp"
+#include "run/StopRequest.hpp"
 
 extern char** environ;
 
@@ -84,8 +85,17 @@ void PointProcess::start() {
     for (const auto& a : args) log << " " << a;
     log << "\n";
   }
+  // The point stops, checkpointed, if this process dies (run/StopRequest.hpp; the signal follows
+  // the spawning thread, and the sweep spawns from its only thread).
+  std::vector<std::string> env_text;
+  for (char** e = environ; *e; ++e)
+    if (std::strncmp(*e, kStopWithParent, std::strlen(kStopWithParent)) != 0) env_text.emplace_back(*e);
+  env_text.push_back(std::string(kStopWithParent) + "=" + std::to_string(::getpid()));
+  std::vector<char*> envp;
+  for (auto& e : env_text) envp.push_back(e.data());
+  envp.push_back(nullptr);
   started_ = sweep_clock();
-  const int rc = posix_spawn(&pid_, program_.c_str(), &files, nullptr, argv.data(), environ);
+  const int rc = posix_spawn(&pid_, program_.c_str(), &files, nullptr, argv.data(), envp.data());
   posix_spawn_file_actions_destroy(&files);
   if (rc != 0)
     throw Error("cannot start " + program_ + " for point " + plan_.points[state_.index].label + ": " +

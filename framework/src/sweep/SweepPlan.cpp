@@ -165,6 +165,24 @@ void read_override(const YAML::Node& entry, std::size_t index, const std::set<st
   out.push_back(std::move(o));
 }
 
+// A path written in the sweep file is relative to the sweep file, as a path in an experiment file
+// is relative to that file (docs/sweep.md): made absolute here, before it becomes a `--set`, which
+// `fldsim run` would otherwise resolve against the current directory.
+const std::set<std::string> kPathKeys = {"system.init.file", "plugins.paths"};
+
+std::string anchored_path_value(const std::string& yaml, const fs::path& dir) {
+  YAML::Node value = YAML::Load(yaml);
+  auto anchor = [&](YAML::Node n) {
+    if (n.IsScalar() && !n.Scalar().empty() && fs::path(n.Scalar()).is_relative())
+      n = (dir / n.Scalar()).lexically_normal().string();
+  };
+  if (value.IsSequence())
+    for (std::size_t i = 0; i < value.size(); ++i) anchor(value[i]);
+  else
+    anchor(value);
+  return flow_yaml(value);
+}
+
 // YAML texts of two scalars name the same value when they parse to the same number, or are equal.
 bool same_value(const std::string& a, const std::string& b) {
   if (a == b) return true;
@@ -306,7 +324,11 @@ SweepPlan read_sweep_plan(const std::string& file,
     for (std::size_t a = 0; a < axes.size(); ++a)
       for (const auto& v : axes[a].values[digit[a]]) {
         p.axis.push_back(v);
-        p.label += (p.label.empty() ? "" : "_") + label_text(label_key(v.key)) + "-" + label_text(v.yaml);
+        // Appended piece by piece: `"_" + std::string` here trips GCC 12's -Wrestrict false positive.
+        if (!p.label.empty()) p.label += '_';
+        p.label += label_text(label_key(v.key));
+        p.label += '-';
+        p.label += label_text(v.yaml);
       }
     p.settings = p.axis;
     p.settings.push_back(threads_value);
@@ -328,6 +350,8 @@ SweepPlan read_sweep_plan(const std::string& file,
       }
       if (match) p.settings.insert(p.settings.end(), o.set.begin(), o.set.end());
     }
+    for (auto& setting : p.settings)
+      if (kPathKeys.count(setting.key)) setting.yaml = anchored_path_value(setting.yaml, dir);
     if (p.label.empty()) p.label = "base";
     plan.points.push_back(std::move(p));
   }
