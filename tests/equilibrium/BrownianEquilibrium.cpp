@@ -108,4 +108,26 @@ BrownianEquilibrium run_brownian(const EquilibriumScene& scene, const BrownianOp
   return out;
 }
 
+BrownianEquilibrium run_brownian_replicas(const EquilibriumScene& scene, BrownianOptions opt, int runs) {
+  BrownianEquilibrium out;
+  out.g = oracle::RadialHistogram(oracle::PairPoints::BodyCentres, opt.bin_width, opt.r_max);
+  out.min_gap = INFINITY;
+  opt.blocks = 1;
+  opt.stress_every = 0;
+  const std::uint64_t first = opt.seed;
+  for (int k = 0; k < runs; ++k) {
+    opt.seed = first + std::uint64_t(k);
+    const BrownianEquilibrium r = run_brownian(scene, opt);
+    out.g.append_blocks(r.g);
+    out.Z_blocks.push_back(r.Z.mean);
+    out.steps += r.steps;
+    out.accepted += r.accepted;
+    out.rejected += r.rejected;
+    out.min_gap = std::min(out.min_gap, r.min_gap);
+    out.seconds += r.seconds;
+  }
+  out.Z = oracle::block_mean(out.Z_blocks);
+  return out;
+}
+
 }  // namespace fldsim::testing

@@ -61,6 +61,11 @@ struct BrownianEquilibrium {
 };
 
 BrownianEquilibrium run_brownian(const EquilibriumScene& scene, const BrownianOptions& opt);
+// Independent runs as the blocks: run k = 0..runs-1 has seed opt.seed + k (its own hard-body
+// Monte Carlo start and noise), relaxes for `equilibrate`, is sampled for `duration` into one
+// block. g, Z and the counters are pooled (steps, accepted, rejected, seconds summed; min_gap the
+// smallest); the stress observer is not used.
+BrownianEquilibrium run_brownian_replicas(const EquilibriumScene& scene, BrownianOptions opt, int runs);
 oracle::OracleResult run_scene_oracle(const EquilibriumScene& scene, const oracle::OracleOptions& opt);
 
 }  // namespace fldsim::testing

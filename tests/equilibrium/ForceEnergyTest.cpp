@@ -63,9 +63,14 @@ std::vector<std::string> force_plugin_names() {
 
 TEST(ForceEnergy, EveryDeclaredEnergyIsThePotentialOfItsForceBetweenSpheres) {
   int with_energy = 0;
-  for (const auto& name : force_plugin_names()) {
-    SCOPED_TRACE(name);
-    auto law = make<ForceLaw>("force", name);
+  // Every plugin with its defaults, and the repulsion's earlier continuation into overlaps.
+  std::vector<std::pair<std::string, std::string>> laws;
+  for (const auto& name : force_plugin_names()) laws.emplace_back(name, "{}");
+  laws.emplace_back("repulsion", "{overlap: wall}");
+  laws.emplace_back("repulsion", "{overlap: wall, wall_length: 1e-6, wall_factor: 100}");
+  for (const auto& [name, params] : laws) {
+    SCOPED_TRACE(name + params);
+    auto law = make<ForceLaw>("force", name, params);
     const PairEnergy* energy = pair_energy_of(*law);
     if (!energy) {
       std::cout << "force " << name << ": no pair energy declared (skipped)\n";
@@ -109,6 +114,36 @@ TEST(ForceEnergy, EveryDeclaredEnergyIsThePotentialOfItsForceBetweenSpheres) {
     EXPECT_EQ(total_energy(s, *energy, range), 0.0) << "energy beyond range()";
   }
   EXPECT_GT(with_energy, 0) << "no force plugin declares a pair energy";
+}
+
+// The repulsion's continuation into overlaps (ShortRangeRepulsion.hpp): with the defaults, at
+// Pe = 0, F(delta_num = 1e-5 a) = C_p (delta_min/delta_num) (eta - eta^2/2)^3 = 166.6 kT/a, and
+// overlaps feel the same (`overlap: plateau`, the default); `overlap: wall` adds F(delta_num) per
+// 1e-4 a of overlap up to 10 F(delta_num) (reached at 9e-4 a); 0 <= gap < delta_num is the
+// paper's clamp either way.
+TEST(ForceEnergy, RepulsionOverlapsMeetTheWallOrThePlateau) {
+  auto shape = make<Shape>("shape", "sphere");
+  System s(shape, 2, 20.0, brownian_physics());
+  const double eta = 1.0 - 1e-5 / 1e-3, g = eta - 0.5 * eta * eta;
+  const double f_num = 10.0 * 8.0 * M_PI * s.physics().viscosity * 1e2 * g * g * g;  // D0/a^2 = 1/(6 pi mu)
+  EXPECT_NEAR(f_num, 166.6, 0.1);
+  auto force_at = [&](const ForceLaw& law, double gap) {
+    s.positions()[0] = Vec3(5.0, 5.0, 5.0);
+    s.positions()[1] = Vec3(7.0 + gap, 5.0, 5.0);
+    s.update_nodes();
+    return wrench_of(s, law)[6];
+  };
+  auto wall = make<ForceLaw>("force", "repulsion", "{overlap: wall}");
+  auto plateau = make<ForceLaw>("force", "repulsion");
+  for (double gap : {5e-6, 0.0}) {  // the paper's clamp, unchanged
+    EXPECT_NEAR(force_at(*wall, gap), f_num, 1e-9 * f_num) << "gap " << gap;
+    EXPECT_NEAR(force_at(*plateau, gap), f_num, 1e-9 * f_num) << "gap " << gap;
+  }
+  for (double overlap : {2e-6, 5e-5, 8.9e-4, 1e-3, 0.3}) {
+    const double wall_factor = std::min(1.0 + overlap / 1e-4, 10.0);
+    EXPECT_NEAR(force_at(*wall, -overlap), wall_factor * f_num, 1e-6 * f_num) << "overlap " << overlap;
+    EXPECT_NEAR(force_at(*plateau, -overlap), f_num, 1e-6 * f_num) << "overlap " << overlap;
+  }
 }
 
 TEST(ForceEnergy, BodyForceAndTorqueOfDicolloidsAreMinusTheEnergyGradient) {

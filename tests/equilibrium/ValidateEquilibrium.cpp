@@ -2,19 +2,21 @@
 // potential, with the tables of the CI tests at larger N and length:
 //   fldsim_validate_equilibrium                       every case below, long settings
 //   fldsim_validate_equilibrium CASE [key=value ...]  one case, settings overridden
-// Cases: spheres, dicolloid02 (FLD with taper: smooth, the repulsion hard at contact, dt 2.5e-4:
-// as EquilibriumComparisonTest), spheres_dt1e-3, spheres_default_repulsion, spheres_nodrift,
-// spheres_notaper (must fail: the taper window's time-step bias at 1e-3, the unreached overlaps of
-// the default repulsion, no thermal drift, the abrupt cutoff), and pressure_spheres, pressure_dicolloid02,
+// Cases: spheres, dicolloid02 (FLD with taper: smooth, the default repulsion, dt 2.5e-4, against the
+// hard-core oracle: as EquilibriumComparisonTest), spheres_dt1e-3, spheres_full_oracle,
+// spheres_nodrift, spheres_notaper (must fail: the taper window's time-step bias at 1e-3, the
+// repulsion's overlap population that FLD's steps do not reach, no thermal drift, the abrupt
+// cutoff), and pressure_spheres, pressure_dicolloid02,
 // pressure_dicolloid1 (free_draining with the widened repulsion of OsmoticPressureTest at dt 5e-5: the stress
 // observer's Z against the oracle), pressure_<shape>_auto (the same at dt: auto, frame 1e-3, default
 // tolerance). Keys: n, phi, dt, duration, equilibrate, blocks, every, seed, hydro, hydro_params,
 // force_params, drift (midpoint|none), oracle_sweeps, oracle_blocks, stress_every, max_overlap,
-// adaptive (0|1), tolerance, reject_at, rejected (bridge|redraw).
-// Prints per case: g(r) bin table (0.02 a), the 0.01 a bins around contact (2.00-2.10 a) and
-// around the lubrication cutoff (2.40-2.60 a) as ratios g_BD/g_MC, the contact shell 2.00-2.05 a,
-// and Z (configurational virial and stress observer) against the oracle. Exit code 1 if a case
-// that should pass fails (or one that should fail passes).
+// adaptive (0|1), tolerance, reject_at, rejected (bridge|redraw), hard_core (0|1: the oracle's), runs (R > 0:
+// R independent runs of equilibrate + duration, seeds seed .. seed + R - 1, one block each, as the CI tests
+// do), rebin (comparison bins of rebin x 0.01 a; 2). Prints per case: g(r) bin table (0.02 a), the 0.01 a
+// bins around contact (2.00-2.10 a) and around the lubrication cutoff (2.40-2.60 a) as ratios g_BD/g_MC, the
+// contact shell 2.00-2.05 a, and Z (configurational virial and stress observer) against the oracle. Exit code
+// 1 if a case that should pass fails (or one that should fail passes).
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -41,6 +43,8 @@ struct Case {
   oracle::OracleOptions mc;
   bool expect_pass = true;
   bool pressure = false;  // compare Z within 2 %
+  int rebin = 2;          // comparison bins: rebin x 0.01 a
+  int runs = 0;           // > 0: that many independent runs (seeds seed, seed + 1, ...) as the blocks
 };
 
 std::map<std::string, Case> cases() {
@@ -55,11 +59,13 @@ std::map<std::string, Case> cases() {
   base.mc.blocks = 40;
   base.mc.node_distribution = false;
   base.scene.hydro_params = "{taper: smooth}";  // the smooth lubrication cutoff (issue 11 part 1)
-  // As EquilibriumComparisonTest: the repulsion made hard at contact (FLD does not reach the
-  // default one's overlap population: spheres_default_repulsion) and the step at which FLD's
-  // equilibrium is exact to about 1.5 % per 0.02 a bin (docs/lubrication-taper.md; at the
-  // examples' 1e-3 the taper window is off by +-3 %: spheres_dt1e-3).
-  base.scene.force_params = "{delta_num: 1e-7}";
+  // As EquilibriumComparisonTest: the default repulsion against the hard-core oracle (FLD's steps do
+  // not reach the repulsion's overlap population: spheres_full_oracle compares with the full
+  // Boltzmann distribution) and the step at which FLD's equilibrium is exact to about 1.5 % per
+  // 0.02 a bin (docs/lubrication-taper.md; at the examples' 1e-3 the taper window is off by
+  // +-3 %: spheres_dt1e-3).
+  base.scene.force_params = "{}";
+  base.mc.hard_core = true;
   base.bd.dt = 2.5e-4;
   base.bd.duration = 20.0;
   base.bd.sample_every = 40;
@@ -74,9 +80,9 @@ std::map<std::string, Case> cases() {
   dt.expect_pass = false;
   c["spheres_dt1e-3"] = dt;
   Case dr = base;
-  dr.scene.force_params = "{}";
+  dr.mc.hard_core = false;
   dr.expect_pass = false;
-  c["spheres_default_repulsion"] = dr;
+  c["spheres_full_oracle"] = dr;
   Case nd = base;
   nd.bd.drift = DriftScheme::None;
   nd.bd.dt = 1e-3;
@@ -99,6 +105,7 @@ std::map<std::string, Case> cases() {
     // The repulsion widened to 0.1 a so that the run is accurate at its step (OsmoticPressureTest.cpp:
     // the default one, 1 kT per 0.006 a of overlap, needs dt << 1e-5 a^2/D0).
     p.scene.hydro = "free_draining";
+    p.mc.hard_core = false;  // free draining reaches the overlaps
     p.scene.hydro_params = "{}";
     p.scene.force_params = "{prefactor: 20, delta_min: 0.1, delta_num: 0.02}";
     p.bd.dt = 5e-5;
@@ -163,6 +170,12 @@ void apply(Case& c, const std::string& kv) {
     c.bd.max_overlap = std::stod(v);
   else if (k == "stress_every")
     c.bd.stress_every = std::stol(v);
+  else if (k == "hard_core")
+    c.mc.hard_core = v == "1";
+  else if (k == "rebin")
+    c.rebin = std::stoi(v);
+  else if (k == "runs")
+    c.runs = std::stoi(v);
   else if (k == "pressure")
     c.pressure = v == "1";
   else if (k == "adaptive")
@@ -199,10 +212,12 @@ bool run_case(const std::string& name, const Case& c) {
             << " blocks\n"
             << std::flush;
   const auto mc = run_scene_oracle(c.scene, c.mc);
-  std::cout << "oracle: " << mc.samples << " samples, Z = " << mc.Z.mean << " +- " << mc.Z.se
-            << " (node-node " << mc.Z_node.mean << " +- " << mc.Z_node.se << "), " << mc.seconds << " s\n"
+  std::cout << "oracle" << (c.mc.hard_core ? " (hard core: Z without the contact term)" : "") << ": "
+            << mc.samples << " samples, Z = " << mc.Z.mean << " +- " << mc.Z.se << " (node-node "
+            << mc.Z_node.mean << " +- " << mc.Z_node.se << "), " << mc.seconds << " s\n"
             << std::flush;
-  const auto bd = run_brownian(c.scene, c.bd);
+  const auto bd = c.runs > 0 ? run_brownian_replicas(c.scene, c.bd, c.runs) : run_brownian(c.scene, c.bd);
+  if (c.runs > 0) std::cout << "independent runs as blocks: " << c.runs << " from seed " << c.bd.seed << "\n";
   std::cout << "brownian: " << bd.steps << " frames, " << bd.accepted << " steps (" << bd.rejected
             << " attempts rejected), " << bd.seconds << " s, min gap " << bd.min_gap << " a\n";
   bool ok = true;
@@ -220,7 +235,7 @@ bool run_case(const std::string& name, const Case& c) {
     oracle::GrComparisonOptions o;
     o.r_from = 2.0;  // from contact; the overlaps (1.98-2.00 a) are printed above
     o.r_to = 3.0;
-    const auto cmp = oracle::compare_gr(bd.g.rebinned(2), mc.bodies.rebinned(2), o);
+    const auto cmp = oracle::compare_gr(bd.g.rebinned(c.rebin), mc.bodies.rebinned(c.rebin), o);
     std::cout << cmp.table(o);
     std::cout << "contact, 0.01 a bins:\n";
     ratio_rows(bd.g, mc.bodies, 1.98, 2.10);

@@ -64,7 +64,10 @@ OracleResult run_oracle(System& s, const std::vector<std::shared_ptr<ForceLaw>>&
   }
 
   // Its own stream (stage 2 of the Monte Carlo purpose), so the same seed is fine.
+  if (opt.hard_core)
+    for (const auto& n : s.shape().nodes()) range = std::max(range, 2.0 * n.radius);
   MetropolisSampler mc(s, energies, std::max(range, 1e-9), opt.seed, opt.acceptance);
+  mc.set_hard_core(opt.hard_core);
   mc.set_steps(report.max_displacement, 0.3);
   for (std::int64_t k = 0; k < opt.equilibration_sweeps; ++k) {
     mc.sweep();

@@ -40,6 +40,11 @@ struct OracleOptions {
   bool node_distribution = true;            // also g(r) of nodes (needed for the contact value)
   double target_acceptance = 0.4;
   AcceptanceRule acceptance = metropolis_acceptance;  // tests swap in a wrong rule
+  // Hard core (MetropolisSampler::set_hard_core): no node pair of two bodies overlaps, i.e. the
+  // Boltzmann distribution of the laws' energies restricted to configurations without overlaps
+  // (the reference for lubricated dynamics: docs/equilibrium-oracle.md, "FLD near contact"). Z is
+  // then the virial of the laws' forces only: the hard core's contact term is not in it.
+  bool hard_core = false;
 };
 
 struct OracleResult {

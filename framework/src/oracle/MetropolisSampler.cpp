@@ -67,6 +67,7 @@ double MetropolisSampler::pair_energy(std::size_t body, std::size_t k, const Vec
   if (other == body) return 0.0;
   const Vec3 r = periodic_difference(node_x_[q] - xk, s_.box().edge());  // both wrapped, no offset
   const double d = r.norm();
+  if (hard_core_ && d < s_.node_radius(k) + s_.node_radius(q % m_)) return INFINITY;
   if (d >= range_) return 0.0;
   // The plugins see the same NodePair as in add(): body_i < body_j, r = x_j - x_i.
   NodePair p;

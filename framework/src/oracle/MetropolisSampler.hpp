@@ -51,6 +51,9 @@ class MetropolisSampler {
   void reset_counters() { tried_t_ = accepted_t_ = tried_r_ = accepted_r_ = 0; }
   // U/kT of the whole configuration (every node pair once), for tests and logs.
   double total_energy() const;
+  // Hard core: a node pair of two bodies closer than the sum of the node radii has U = infinity
+  // (the move is rejected), on top of the laws' energies.
+  void set_hard_core(bool on) { hard_core_ = on; }
 
  private:
   // U/kT of body `body`'s nodes at positions x[0..m) with the nodes of every other body.
@@ -65,6 +68,7 @@ class MetropolisSampler {
   std::uint64_t seed_;
   AcceptanceRule rule_;
   std::size_t m_;
+  bool hard_core_ = false;
   double dx_ = 0.1, dtheta_ = 0.1;
   std::int64_t sweep_count_ = 0;
   std::int64_t tried_t_ = 0, accepted_t_ = 0, tried_r_ = 0, accepted_r_ = 0;

@@ -36,7 +36,11 @@ const char* const kOracleHelp =
     "  --blocks B              blocks for the standard errors (20)\n"
     "  --bin W                 g(r) bin width in a (0.02)\n"
     "  --r-max R               g(r) range in a (min(5, L/2))\n"
-    "  --seed S                seed of the start and the chain (system.init.seed)\n";
+    "  --seed S                seed of the start and the chain (system.init.seed)\n"
+    "  --hard-core             no two bodies' nodes overlap (U = infinity there): the reference for\n"
+    "                          lubricated hydrodynamics (fld, lubrication), whose steps do not reach\n"
+    "                          the overlaps of the repulsion (docs/equilibrium-oracle.md, \"FLD near\n"
+    "                          contact\"); Z then leaves out the hard core's contact term\n";
 
 namespace {
 
@@ -94,6 +98,8 @@ bool parse(const std::vector<std::string>& args, CommandLine& c, std::ostream& o
     } else if (a == "--r-max") {
       c.opt.r_max = parse_positive(a, value());
       c.r_max_given = true;
+    } else if (a == "--hard-core") {
+      c.opt.hard_core = true;
     } else if (a == "--seed") {
       c.opt.seed = std::uint64_t(parse_integer(a, value(), 0));
       c.seed_given = true;
@@ -197,6 +203,7 @@ int oracle_command(const std::vector<std::string>& args, std::ostream& out, std:
       "Z (node-node virial)  %.4f +- %.4f  (leaves out the intra-body constraint virial)\n",
       r.Z.mean, r.Z.se, r.Z_node.mean, r.Z_node.se);
   out << line;
+  if (opt.hard_core) out << "(hard core: Z is the virial of the force laws only, without the contact term)\n";
   if (r.contact.blocks > 0) {
     std::snprintf(
         line, sizeof line, "g(%.3g a+) nodes      %.4f +- %.4f  (quadratic fit over [%.3g, %.3g) a)\n",

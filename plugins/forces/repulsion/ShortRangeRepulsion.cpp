@@ -12,7 +12,15 @@ void ShortRangeRepulsion::describe(ParamSchema& s) {
   s.number("prefactor", 10.0, "", "C_p*, in units of 8 pi mu a^2 rate (see `unit`); the paper uses 10")
       .at_least(0.0);
   s.number("delta_min", 1e-3, "a", "range of the force: acts for surface gaps below delta_min").greater(0.0);
-  s.number("delta_num", 1e-5, "a", "gaps below this are evaluated at this value").greater(0.0);
+  s.number("delta_num", 1e-5, "a", "gaps 0 <= gap < delta_num are evaluated at delta_num (the paper's clamp)")
+      .greater(0.0);
+  s.choice("overlap", "plateau", {"plateau", "wall"},
+           "overlapping nodes (gap < 0): plateau = the constant F(delta_num), as for 0 <= gap < delta_num; "
+           "wall = F(delta_num) (1 + overlap / wall_length), at most wall_factor F(delta_num) "
+           "(docs/time_steps.md, \"The repulsion's force cap\": what it costs)");
+  s.number("wall_length", 1e-4, "a", "overlap over which the wall's force grows by F(delta_num)")
+      .greater(0.0);
+  s.number("wall_factor", 10.0, "", "the wall's largest force, in units of F(delta_num)").at_least(1.0);
   s.choice("unit", "paper", {"paper", "diffusive", "shear"},
            "rate in C_p = C_p* 8 pi mu a^2 rate: paper = D0/a^2 for Pe < 1 and gammadot for Pe >= 1; "
            "diffusive = D0/a^2; shear = gammadot");
@@ -22,6 +30,8 @@ ShortRangeRepulsion::ShortRangeRepulsion(const Params& p)
     : prefactor_star_(p.number("prefactor")),
       delta_min_(p.number("delta_min")),
       delta_num_(p.number("delta_num")),
+      wall_length_(p.number("wall_length")),
+      wall_factor_(p.text("overlap") == "plateau" ? 1.0 : p.number("wall_factor")),
       unit_(p.text("unit")) {
   if (delta_num_ >= delta_min_) p.fail("delta_num", "expected a number < delta_min");
 }
@@ -37,27 +47,36 @@ double ShortRangeRepulsion::prefactor(const System& system) const {
   return prefactor_star_ * 8.0 * M_PI * ph.viscosity * force_rate(ph, unit_);  // a = 1
 }
 
-double ShortRangeRepulsion::magnitude(double gap, double prefactor, double delta_min, double delta_num) {
+double ShortRangeRepulsion::magnitude(double gap, double prefactor, double delta_min, double delta_num,
+                                      const Wall& wall) {
   if (gap >= delta_min) return 0.0;
   const double delta = std::max(gap, delta_num);
   const double eta = 1.0 - delta / delta_min;
   const double g = eta - 0.5 * eta * eta;
-  return prefactor * (delta_min / delta) * g * g * g;
+  const double f = prefactor * (delta_min / delta) * g * g * g;
+  if (gap >= 0.0) return f;
+  return f * std::min(1.0 - gap / wall.length, wall.factor);  // the wall (factor 1: the plateau)
 }
 
-double ShortRangeRepulsion::energy(double gap, double prefactor, double delta_min, double delta_num) {
+double ShortRangeRepulsion::energy(double gap, double prefactor, double delta_min, double delta_num,
+                                   const Wall& wall) {
   if (gap >= delta_min) return 0.0;
   const double x = std::max(gap, delta_num) / delta_min, x2 = x * x;
   const double u =
       prefactor * delta_min / 8.0 * (-std::log(x) - 11.0 / 12.0 + x2 * (1.5 + x2 * (-0.75 + x2 / 6.0)));
   if (gap >= delta_num) return u;
-  return u + magnitude(delta_num, prefactor, delta_min, delta_num) * (delta_num - gap);
+  const double f = magnitude(delta_num, prefactor, delta_min, delta_num, wall);
+  if (gap >= 0.0) return u + f * (delta_num - gap);
+  // Overlap d = -gap: F = f (1 + d / length) up to d_c = (factor - 1) length, then f factor.
+  const double d = -gap, dc = (wall.factor - 1.0) * wall.length;
+  if (d <= dc) return u + f * (delta_num + d + 0.5 * d * d / wall.length);
+  return u + f * (delta_num + dc + 0.5 * dc * dc / wall.length + wall.factor * (d - dc));
 }
 
 double ShortRangeRepulsion::pair_energy(const System& system, const NodePair& pair) const {
   const double gap = pair.distance - system.node_radius(pair.node_a) - system.node_radius(pair.node_b);
   if (gap >= delta_min_) return 0.0;
-  return energy(gap, prefactor(system), delta_min_, delta_num_);
+  return energy(gap, prefactor(system), delta_min_, delta_num_, {wall_length_, wall_factor_});
 }
 
 void ShortRangeRepulsion::add(const System& system, const NodePairList& pairs, double* wrench,
@@ -69,7 +88,7 @@ void ShortRangeRepulsion::add(const System& system, const NodePairList& pairs, d
   // Serial: the pairs inside delta_min are few, and a fixed order keeps sums reproducible.
   for (const NodePair& p : pairs.pairs()) {
     const double gap = p.distance - system.node_radius(p.node_a) - system.node_radius(p.node_b);
-    const double f = magnitude(gap, cp, delta_min_, delta_num_);
+    const double f = magnitude(gap, cp, delta_min_, delta_num_, {wall_length_, wall_factor_});
     if (f == 0.0) continue;
     const Vec3 d = p.r / p.distance;
     const Vec3 fj = f * d;  // pushes j away from i
