@@ -73,14 +73,16 @@ VARIANTS = {
 }
 LONG = {"duration": 500.0, "start": 150.0}
 VARIANTS["long"] = dict(LONG)
-for _name in ["lammps", "lens", "lammpslens", "oldforms", "notaper"]:
+for _name in ["lammps", "lens", "lammpslens", "oldforms", "notaper", "lammpslens-smoothvis",
+              "lammpslens-smoothvis-replica"]:
     VARIANTS["long-" + _name] = dict(VARIANTS[_name], **LONG)
 BROWNIAN = ["baseline", "lammps", "lens", "lammpslens", "notaper", "isobody", "rep100", "replica", "oldforms",
             "smoothvis", "lammpslens-smoothvis"]
 NOBROWN = ["baseline", "replica", "lammps", "oldforms", "lens", "isobody", "rep100", "lammpslens", "notaper", "centrearm", "lever", "pump", "twist", "khfit", "long",
            "long-lammps", "long-lens", "long-lammpslens", "long-oldforms", "long-notaper", "n1000", "fixeddt",
            "smoothvis", "lammpslens-smoothvis", "lammpslens-smoothvis-replica", "lammps-smoothvis",
-           "lens-smoothvis", "lammpslens-smoothvis005", "lammpslens-smoothvis02"]
+           "lens-smoothvis", "lammpslens-smoothvis005", "lammpslens-smoothvis02", "long-lammpslens-smoothvis",
+           "long-lammpslens-smoothvis-replica"]
 
 
 def experiment(name, variant, brownian):
