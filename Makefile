@@ -37,7 +37,8 @@ test: build
 # The whole suite and the robustness fuzzer under AddressSanitizer + UndefinedBehaviorSanitizer,
 # in its own build folder (RelWithDebInfo: findings come with file:line). allocator_may_return_null:
 # a huge malloc returns NULL as without ASan (HDF5 then reports a corrupt file) instead of aborting. FUZZ_ITERATIONS sets
-# the fuzzer's budget; SANITIZE_TESTS a ctest -R filter (default: everything).
+# the fuzzer's budget; SANITIZE_TESTS a ctest -R filter (default: everything). Leaks inside HDF5 on
+# corrupt input are suppressed (tools/sanitize/lsan.supp says which and why).
 SANITIZE_BUILD ?= build-sanitize
 FUZZ_ITERATIONS ?= 2000
 SANITIZE_TESTS ?= .
@@ -47,6 +48,7 @@ sanitize: deps
 	@cmake --build $(SANITIZE_BUILD) -j$(JOBS)
 	@cd $(SANITIZE_BUILD) && FLDSIM_FUZZ_ITERATIONS=$(FUZZ_ITERATIONS) \
 	  ASAN_OPTIONS=detect_leaks=1:abort_on_error=0:detect_odr_violation=0:allocator_may_return_null=1 \
+	  LSAN_OPTIONS=suppressions=$(CURDIR)/tools/sanitize/lsan.supp \
 	  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	  ctest --output-on-failure -j$(JOBS) --timeout 1800 -R '$(SANITIZE_TESTS)' 2>&1 | tee ctest.log; \
 	  status=$${PIPESTATUS[0]}; \

@@ -68,8 +68,8 @@ def main():
             if k == 0:
                 op = oa = ""
             else:
-                op = f"{math.log2(rows[k - 1][1] / pos):.2f}"
-                oa = f"{math.log2(rows[k - 1][2] / ang):.2f}"
+                op = f"{math.log2(rows[k - 1][1] / pos):.2f}" if pos > 0 else "n/a"
+                oa = f"{math.log2(rows[k - 1][2] / ang):.2f}" if ang > 0 else "n/a"
             lines.append(f"| {dt:g} | {pos:.3e} | {op} | {ang:.3e} | {oa} |")
         lines.append("")
         print("\n".join(lines[-len(rows) - 4:]), flush=True)

@@ -3,7 +3,8 @@
 Deterministic runs (kT = 0, same start, same strain): RMS over bodies of
   - the centre displacement between the two runs, taken as the Lees-Edwards minimum image
     (the image at y + L is shifted by the offset in x, TrajectoryLayout.hpp), in a;
-  - the rotation angle between the two orientations, 2 acos |q1 . q2| for unit quaternions, in rad.
+  - the rotation angle between the two orientations (4 atan2(|q1 - q2|, |q1 + q2|) for unit
+    quaternions with q1 . q2 >= 0, exact also for small angles), in rad.
 
 Brownian runs: steady-state eta_r and delta_theta_m with their standard errors
 (/results/stress/eta_r, /results/orientation/delta_theta_m, attribute stderr), and g(r) near
@@ -67,8 +68,13 @@ def trajectory_error(path, reference_path):
         raise ValueError(f"{path}: Lees-Edwards offset {offset} differs from the reference {offset_ref}")
     d = minimum_image(x - x_ref, edge, offset)
     position = math.sqrt(np.mean(np.sum(d * d, axis=1)))
-    dot = np.abs(np.sum(q * q_ref, axis=1)) / (np.linalg.norm(q, axis=1) * np.linalg.norm(q_ref, axis=1))
-    angle = 2.0 * np.arccos(np.clip(dot, 0.0, 1.0))
+    # Rotation angle between unit quaternions u, v (sign chosen so that u . v >= 0): the arc between
+    # them is alpha = 2 atan2(|u - v|, |u + v|) and the rotation 2 alpha. Unlike 2 acos(u . v), this
+    # keeps its digits for small angles (acos loses everything below about 1e-8 rad).
+    u = q / np.linalg.norm(q, axis=1)[:, None]
+    v = q_ref / np.linalg.norm(q_ref, axis=1)[:, None]
+    v = v * np.where(np.sum(u * v, axis=1) < 0.0, -1.0, 1.0)[:, None]
+    angle = 4.0 * np.arctan2(np.linalg.norm(u - v, axis=1), np.linalg.norm(u + v, axis=1))
     return position, math.sqrt(np.mean(angle * angle))
 
 

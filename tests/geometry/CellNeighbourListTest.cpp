@@ -198,7 +198,9 @@ TEST(CellNeighbourList, AffineShearKeepsTheListUntilTheStrainUsesTheSkin) {
     s.update_nodes();
     const bool now = nl.update(s);
     // Affine bound alone: dgamma (range + 0) <= skin for dgamma <= 0.16, i.e. 40 steps.
-    if (k * step * range < skin - 1e-12) EXPECT_FALSE(now) << "step " << k;
+    if (k * step * range < skin - 1e-12) {
+      EXPECT_FALSE(now) << "step " << k;
+    }
     rebuilt = rebuilt || now;
     expect_agrees(nl, s, range, now, range + skin);
   }

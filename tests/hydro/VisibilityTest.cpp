@@ -4,6 +4,8 @@
 // inside the other node of the same body.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <set>
 
 #include "HydroTestSupport.hpp"
@@ -87,4 +89,69 @@ TEST(Visibility, CutoffScalesWithMeanRadius) {
   // at 1.2: accepted.
   EXPECT_FALSE(nodes_visible(off, off, small, 1, 0, 0, Vec3(1.3, 0, 0), 2.5));
   EXPECT_TRUE(nodes_visible(off, off, small, 1, 0, 0, Vec3(1.2, 0, 0), 2.5));
+}
+
+// The smooth visibility weight (Visibility.hpp). Geometry: body i a c = 0.2 dicolloid along x at the
+// origin, a single-node probe of body j on a circle of radius 2.2 about node 1 of i, angle t from
+// +x. The exit point from node 1 at angle t is (0.1 + cos t, sin t); its depth outside node 0 is
+// d(t) = sqrt((0.2 + cos t)^2 + sin^2 t) - 1 = sqrt(1.04 + 0.4 cos t) - 1, zero at cos t = -0.1
+// (t* = 1.6710 rad): the sharp rule switches there, from visible (t < t*) to hidden.
+namespace {
+
+double probe_weight(double t, double width) {
+  const Vec3 off_i[2] = {Vec3(-0.1, 0, 0), Vec3(0.1, 0, 0)};
+  const Vec3 off_j[2] = {Vec3::Zero(), Vec3(0, 0, 50)};  // j's second node far away: never in the way
+  const double radii[2] = {1.0, 1.0};
+  const Vec3 r = 2.2 * Vec3(std::cos(t), std::sin(t), 0.0);
+  return visibility_weight(off_i, off_j, radii, 2, 1, 0, r, 2.5, width);
+}
+
+}  // namespace
+
+TEST(Visibility, SmoothWeightIsTheSharpRuleSpreadOverTheWidth) {
+  const double t_star = std::acos(-0.1);
+  for (const double t : {0.3, 1.0, 1.6, 1.74, 2.5, 3.0}) {
+    // width 0 is the sharp rule exactly
+    EXPECT_EQ(probe_weight(t, 0.0), t < t_star ? 1.0 : 0.0) << t;
+    // away from the switch (|depth| > width / 2) the smooth weight is the sharp one
+    const double depth = std::sqrt(1.04 + 0.4 * std::cos(t)) - 1.0;
+    if (std::fabs(depth) > 0.05) {
+      EXPECT_EQ(probe_weight(t, 0.1), probe_weight(t, 0.0)) << t;
+    }
+  }
+  // at the switch, half: W(1/2) = 1/2
+  EXPECT_NEAR(probe_weight(t_star, 0.1), 0.5, 1e-12);
+}
+
+TEST(Visibility, SmoothWeightIsContinuouslyDifferentiableWhereTheSharpOneJumps) {
+  // Scan t across the switch: the sharp weight jumps by 1 between two neighbouring samples; the
+  // smooth one changes by at most its largest slope times the step, and its slope (difference
+  // quotient) changes by O(step), i.e. no kink: the largest change of the quotient between
+  // neighbouring samples is below 1 % of its largest value.
+  const double t_star = std::acos(-0.1), h = 1e-4;
+  double largest_jump_sharp = 0.0, largest_step = 0.0, largest_slope = 0.0, largest_slope_change = 0.0;
+  double previous_slope = 0.0;
+  for (double t = t_star - 0.2; t < t_star + 0.2; t += h) {
+    largest_jump_sharp =
+        std::max(largest_jump_sharp, std::fabs(probe_weight(t + h, 0.0) - probe_weight(t, 0.0)));
+    const double step = probe_weight(t + h, 0.1) - probe_weight(t, 0.1);
+    const double slope = step / h;
+    largest_step = std::max(largest_step, std::fabs(step));
+    largest_slope = std::max(largest_slope, std::fabs(slope));
+    if (t > t_star - 0.2)
+      largest_slope_change = std::max(largest_slope_change, std::fabs(slope - previous_slope));
+    previous_slope = slope;
+  }
+  EXPECT_EQ(largest_jump_sharp, 1.0);
+  // dW/dt <= (15/8) / width * |dd/dt|, |dd/dt| <= 0.2 here: slope <= 3.75
+  EXPECT_LE(largest_slope, 3.75);
+  EXPECT_GT(largest_slope, 1.0);
+  EXPECT_LT(largest_slope_change, 0.01 * largest_slope);
+}
+
+TEST(Visibility, SpheresAreAlwaysFullyVisible) {
+  const Vec3 off[1] = {Vec3::Zero()};
+  const double unit[1] = {1.0};
+  EXPECT_EQ(visibility_weight(off, off, unit, 1, 0, 0, Vec3(2.1, 0.3, 0), 2.5, 0.1), 1.0);
+  EXPECT_EQ(visibility_weight(off, off, unit, 1, 0, 0, Vec3(2.6, 0, 0), 2.5, 0.1), 0.0);
 }

@@ -33,6 +33,9 @@ Variants (one change each against the current defaults):
                (kT = 0 only)
   n1000        N = 1000 (box 28.67 a), the paper's size (kT = 0 only: the Brownian run costs ~5x)
   fixeddt      fixed dt = 1e-3 instead of dt: auto with dt_max 0.01 (kT = 0 only: a step check)
+  smoothvis    `hydro.visibility: smooth` (the node visibility rule as a C2 weight, docs/lubrication-taper.md)
+  lammpslens-smoothvis  lammpslens with the smooth visibility (-replica: other seeds; 005, 02: width
+               0.05 a, 0.2 a); lammps-smoothvis, lens-smoothvis: one of the two with it
 """
 import os
 
@@ -57,14 +60,29 @@ VARIANTS = {
     "khfit": {"hydro": "r0_fit: kumar_higdon"},
     "lammpslens": {"hydro": "conventions: lammps", "phi": 0.2531},
     "fixeddt": {"dt": 0.001},
+    "smoothvis": {"hydro": "visibility: smooth"},
+    "lammpslens-smoothvis": {"hydro": "conventions: lammps, visibility: smooth", "phi": 0.2531},
+    "lammpslens-smoothvis-replica": {"hydro": "conventions: lammps, visibility: smooth", "phi": 0.2531,
+                                     "seed": (2, 43)},
+    "lammps-smoothvis": {"hydro": "conventions: lammps, visibility: smooth"},
+    "lens-smoothvis": {"hydro": "visibility: smooth", "phi": 0.2531},
+    "lammpslens-smoothvis005": {"hydro": "conventions: lammps, visibility: smooth, visibility_width: 0.05",
+                                "phi": 0.2531},
+    "lammpslens-smoothvis02": {"hydro": "conventions: lammps, visibility: smooth, visibility_width: 0.2",
+                               "phi": 0.2531},
 }
 LONG = {"duration": 500.0, "start": 150.0}
 VARIANTS["long"] = dict(LONG)
-for _name in ["lammps", "lens", "lammpslens", "oldforms", "notaper"]:
+for _name in ["lammps", "lens", "lammpslens", "oldforms", "notaper", "lammpslens-smoothvis",
+              "lammpslens-smoothvis-replica"]:
     VARIANTS["long-" + _name] = dict(VARIANTS[_name], **LONG)
-BROWNIAN = ["baseline", "lammps", "lens", "lammpslens", "notaper", "isobody", "rep100", "replica", "oldforms"]
+BROWNIAN = ["baseline", "lammps", "lens", "lammpslens", "notaper", "isobody", "rep100", "replica", "oldforms",
+            "smoothvis", "lammpslens-smoothvis"]
 NOBROWN = ["baseline", "replica", "lammps", "oldforms", "lens", "isobody", "rep100", "lammpslens", "notaper", "centrearm", "lever", "pump", "twist", "khfit", "long",
-           "long-lammps", "long-lens", "long-lammpslens", "long-oldforms", "long-notaper", "n1000", "fixeddt"]
+           "long-lammps", "long-lens", "long-lammpslens", "long-oldforms", "long-notaper", "n1000", "fixeddt",
+           "smoothvis", "lammpslens-smoothvis", "lammpslens-smoothvis-replica", "lammps-smoothvis",
+           "lens-smoothvis", "lammpslens-smoothvis005", "lammpslens-smoothvis02", "long-lammpslens-smoothvis",
+           "long-lammpslens-smoothvis-replica"]
 
 
 def experiment(name, variant, brownian):

@@ -1,5 +1,7 @@
 #include "fldsim-sdk/lubrication/BodyResistance.hpp"
 
+#include <cmath>
+
 #include "fldsim-sdk/lubrication/Visibility.hpp"
 #include "fldsim/rigid.hpp"
 
@@ -27,10 +29,12 @@ bool BodyResistance::update(const System& system, const NodePairList& pairs) {
   for (const NodePair& p : pairs.pairs()) {
     const Vec3* off_i = offsets.data() + std::size_t(p.body_i) * m;
     const Vec3* off_j = offsets.data() + std::size_t(p.body_j) * m;
-    if (!nodes_visible(off_i, off_j, radii_.data(), m, p.node_a, p.node_b, p.r, options_.cutoff)) continue;
+    const double w = visibility_weight(off_i, off_j, radii_.data(), m, p.node_a, p.node_b, p.r,
+                                       options_.cutoff, options_.visibility_width);
+    if (w == 0.0) continue;
     const Vec3 centres = p.r - off_j[p.node_b] + off_i[p.node_a];
     candidates_.push_back({p.body_i, p.body_j, p.node_a, p.node_b, p.r,
-                           strain_arm(p.r, centres, radii_[p.node_a], radii_[p.node_b])});
+                           strain_arm(p.r, centres, radii_[p.node_a], radii_[p.node_b]), w});
   }
   const bool changed = !(candidates_ == accepted_);
   if (changed) {
@@ -45,6 +49,7 @@ bool BodyResistance::update(const System& system, const NodePairList& pairs) {
     for (std::size_t k = 0; k < accepted_.size(); ++k) {
       accepted_[k].separation = candidates_[k].separation;
       accepted_[k].arm = candidates_[k].arm;
+      accepted_[k].weight = candidates_[k].weight;
     }
   }
 
@@ -68,6 +73,7 @@ bool BodyResistance::update(const System& system, const NodePairList& pairs) {
       B.rightCols<6>() = S.rightCols<6>();
     else
       B.rightCols<6>() = S.rightCols<6>().lazyProduct(node_kinematics(xb));
+    if (p.weight != 1.0) B *= std::sqrt(p.weight);
     // Gram blocks, symmetrised so that R is symmetric to the last bit.
     const Mat6 ii = B.leftCols<6>().transpose().lazyProduct(B.leftCols<6>());
     const Mat6 jj = B.rightCols<6>().transpose().lazyProduct(B.rightCols<6>());

@@ -47,6 +47,13 @@ void describe_lubrication_params(ParamSchema& s) {
            "width of the smooth taper below the cutoff (fld's r0_fit fldsim is calibrated at the default)")
       .greater(0.0)
       .at_most(0.5);
+  s.choice("visibility", std::string("sharp"), {"sharp", "smooth"},
+           "node-pair visibility of multi-node bodies (Kumar & Higdon 2.1.1): sharp (on/off, as the paper: "
+           "the resistance jumps when an exit point crosses a sibling node's surface) or smooth (pairs "
+           "weighted by a C2 step over exit depths of visibility_width; docs/lubrication-taper.md)");
+  s.number("visibility_width", 0.1, "a", "width of the smooth visibility step (exit-point depth)")
+      .greater(0.0)
+      .at_most(0.5);
   s.number("delta_num", 1e-5, "a", "gaps below this are evaluated at this gap").greater(0.0).less(0.1);
   s.choice("pump", std::string("jeffrey_onishi"), {"jeffrey_onishi", "lammps"},
            "counter-rotation (pump) coefficient: Jeffrey-Onishi (3/40) or LAMMPS lubricateU (3/160)");
@@ -93,6 +100,7 @@ ModelSettings read_lubrication_params(const Params& p) {
   s.lub.strain_arm =
       convention_choice(p, "strain_arm", "contact") == "contact" ? StrainArm::Contact : StrainArm::Centre;
   s.lub.taper_width = convention_choice(p, "taper", "none") == "none" ? 0.0 : p.number("taper_width");
+  s.lub.visibility_width = p.text("visibility") == "smooth" ? p.number("visibility_width") : 0.0;
   if (s.lub.taper_width >= s.lub.cutoff - 2.0)
     p.fail("taper_width", "must be smaller than cutoff - 2 (the taper would reach contact)");
   s.tolerance = p.number("tolerance");

@@ -3,8 +3,10 @@
 //     S_i = S[:, 0:6] K(x_a),  S_j = S[:, 6:12] K(x_b),
 // and from them fills R_delta = sum_p [S_i S_j]^T [S_i S_j] into a BlockSparseMatrix, the
 // R_FE:E_inf right-hand side, the pairwise Brownian forces sum_p B_p beta_p (B_p = [S_i S_j]^T)
-// and the pair stresslets. Pair work is done in parallel into per-pair buffers and then summed per
-// body in pair order, so results do not depend on the thread count.
+// and the pair stresslets. A pair's visibility weight w scales its rows by sqrt(w), hence its
+// resistance and stresslet by w and its Brownian force by sqrt(w) (fluctuation-dissipation kept). Pair work
+// is done in parallel into per-pair buffers and then summed per body in pair order, so results do not depend
+// on the thread count.
 #pragma once
 
 #include <cstdint>
@@ -58,6 +60,7 @@ class BodyResistance {
     std::uint16_t node_a, node_b;
     Vec3 separation;          // x(j,b) - x(i,a), minimum image
     Vec3 arm;                 // strain arm L_ij (see add_strain_force)
+    double weight = 1.0;      // visibility weight w (Visibility.hpp): rows scaled by sqrt(w)
     std::int64_t upper = -1;  // index of block (i, j) in the matrix
     bool operator==(const Accepted& o) const {
       return body_i == o.body_i && body_j == o.body_j && node_a == o.node_a && node_b == o.node_b;

@@ -44,7 +44,8 @@ struct LubricationOptions {
   Lever lever = Lever::Centre;
   StrainArm strain_arm = StrainArm::Contact;  // docs/two-body.md: closer to the exact A, B, C
   double cutoff = 2.5;                        // node centre distance (in abar) where pairs end
-  double taper_width = 0.0;  // 0: abrupt cutoff; else coefficients go to zero over [cutoff - w, cutoff]
+  double taper_width = 0.0;       // 0: abrupt cutoff; else coefficients go to zero over [cutoff - w, cutoff]
+  double visibility_width = 0.0;  // 0: the sharp visibility rule; else its smooth form (Visibility.hpp)
 };
 
 // C2 switch-off: 1 for r <= cutoff - w, 0 for r >= cutoff, (1-s)^3 (1 + 3 s + 6 s^2) between,
