@@ -13,14 +13,19 @@ namespace {
 
 volatile std::sig_atomic_t received = 0;
 
+// The parent-death signal of a sweep point (below). It arrives when the sweep process dies, which
+// under mpirun often follows the SIGTERM the sweep passed on: it must not count as "asked twice".
+constexpr int kParentDied = SIGHUP;
+
 extern "C" void on_stop_signal(int sig) {
   if (received != 0) {
+    if (sig == kParentDied) return;  // already stopping: finish the checkpoint
     // Asked twice: stop now.
     std::signal(sig, SIG_DFL);
     std::raise(sig);
     return;
   }
-  received = sig;
+  received = sig == kParentDied ? SIGTERM : sig;
 }
 
 }  // namespace
@@ -36,7 +41,8 @@ void StopRequest::install() {
   // the sweep process that started it dies (an MPI rank killed, a node lost): otherwise it would
   // run on as an orphan and write its files while the next invocation resumes the same point.
   if (const char* parent = std::getenv(kStopWithParent)) {
-    ::prctl(PR_SET_PDEATHSIG, SIGTERM);
+    sigaction(kParentDied, &action, nullptr);
+    ::prctl(PR_SET_PDEATHSIG, kParentDied);
     if (::getppid() != static_cast<pid_t>(std::atol(parent))) received = SIGTERM;  // already gone
   }
 }
