@@ -228,10 +228,7 @@ Checkpoint read_checkpoint_in_process(const std::string& path) {
 }  // namespace
 
 Checkpoint read_checkpoint(const std::string& path) {
-  io::quiet_hdf5();
-  if (!std::filesystem::exists(path)) throw Error(path + ": checkpoint file not found");
-  io::probe_read_in_child(path, "checkpoint", [&] { read_checkpoint_in_process(path); });
-  return read_checkpoint_in_process(path);
+  return io::read_isolated(path, "checkpoint", [&] { return read_checkpoint_in_process(path); });
 }
 
 }  // namespace fldsim

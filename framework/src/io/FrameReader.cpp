@@ -94,10 +94,7 @@ Checkpoint read_last_frame_in_process(const std::string& result_h5) {
 }  // namespace
 
 Checkpoint read_last_frame(const std::string& result_h5) {
-  io::quiet_hdf5();
-  if (!std::filesystem::exists(result_h5)) throw Error(result_h5 + ": result file not found");
-  io::probe_read_in_child(result_h5, "result file", [&] { read_last_frame_in_process(result_h5); });
-  return read_last_frame_in_process(result_h5);
+  return io::read_isolated(result_h5, "result file", [&] { return read_last_frame_in_process(result_h5); });
 }
 
 }  // namespace fldsim

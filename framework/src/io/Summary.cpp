@@ -104,10 +104,7 @@ std::vector<ResultScalar> read_result_scalars_in_process(const std::string& path
 }  // namespace
 
 std::vector<ResultScalar> read_result_scalars(const std::string& path) {
-  io::quiet_hdf5();
-  if (!std::filesystem::exists(path)) throw Error(path + ": file not found");
-  io::probe_read_in_child(path, "result file", [&] { read_result_scalars_in_process(path); });
-  return read_result_scalars_in_process(path);
+  return io::read_isolated(path, "result file", [&] { return read_result_scalars_in_process(path); });
 }
 
 int print_summary(const std::string& path, std::ostream& out) {
@@ -152,6 +149,5 @@ int print_summary(const std::string& path, std::ostream& out) {
            "too short for it\n";
   return 0;
 }
-
 
 }  // namespace fldsim

@@ -23,8 +23,8 @@ StoredRun read_stored_run_in_process(const std::string& result_file) {
 }  // namespace
 
 StoredRun read_stored_run(const std::string& result_file) {
-  io::probe_read_in_child(result_file, "result file", [&] { read_stored_run_in_process(result_file); });
-  return read_stored_run_in_process(result_file);
+  return io::read_isolated(result_file, "result file",
+                           [&] { return read_stored_run_in_process(result_file); });
 }
 
 }  // namespace fldsim
