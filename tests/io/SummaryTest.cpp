@@ -1,6 +1,9 @@
 // `fldsim summary`: every scalar under /results with its error and unit, values rounded to
 // the precision of their error (two significant digits of the error).
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <sstream>
 
@@ -102,6 +105,40 @@ TEST(Summary, FlagsAveragesWhoseBlockingFoundNoPlateau) {
   EXPECT_EQ(line_of("delta_theta_m").back(), '*') << text;
   EXPECT_EQ(line_of("S_zz").find('*'), std::string::npos) << text;
   EXPECT_NE(text.find("* 1 of 2: no plateau reached"), std::string::npos) << text;
+}
+
+// A result file that a running fldsim still holds open for writing (HDF5 file locking): one line
+// that says so, not the lock call's errno text ("Resource temporarily unavailable", as before).
+TEST(Summary, AFileARunIsWritingIsNamedAsLocked) {
+  test::ScratchDir dir;
+  const std::string path = dir.file("running.h5");
+  {
+    Hdf5ResultSink sink(path, false);
+    sink.commit();
+  }
+  int ready[2];
+  ASSERT_EQ(::pipe(ready), 0);
+  const pid_t writer = ::fork();
+  if (writer == 0) {  // another process with the file open for writing, as a run holds its .part
+    H5::H5File held(path, H5F_ACC_RDWR);
+    const char byte = 1;
+    (void)!::write(ready[1], &byte, 1);
+    ::sleep(30);
+    ::_exit(0);
+  }
+  char byte = 0;
+  ASSERT_EQ(::read(ready[0], &byte, 1), 1);
+  std::string message;
+  try {
+    read_result_scalars(path);
+  } catch (const Error& e) {
+    message = e.what();
+  }
+  ::kill(writer, SIGKILL);
+  ::waitpid(writer, nullptr, 0);
+  EXPECT_NE(message.find("running.h5: cannot read the result file: locked by another process"),
+            std::string::npos)
+      << message;
 }
 
 }  // namespace

@@ -34,6 +34,10 @@ herr_t record_reason(hid_t stack, void*) {
 }
 
 std::string explain(const std::string& desc) {
+  // Before the errno text: HDF5 says "unable to lock file, errno = 11, error message = 'Resource
+  // temporarily unavailable'" for a file a running fldsim is writing.
+  if (desc.find("unable to lock file") != std::string::npos)
+    return "locked by another process (another fldsim run writing it?)";
   const std::string marker = "error message = '";
   if (const auto at = desc.find(marker); at != std::string::npos) {
     const auto end = desc.find('\'', at + marker.size());
@@ -41,8 +45,6 @@ std::string explain(const std::string& desc) {
                        end == std::string::npos ? std::string::npos : end - at - marker.size());
   }
   if (desc.find("file signature not found") != std::string::npos) return "not an HDF5 file";
-  if (desc.find("unable to lock file") != std::string::npos)
-    return "locked by another process (another fldsim run writing it?)";
   if (desc.find("truncated file") != std::string::npos)
     return "truncated file (an interrupted copy or write?)";
   return desc;
