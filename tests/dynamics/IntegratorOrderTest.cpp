@@ -9,7 +9,10 @@
 // there is first order and erratic (bench/accuracy/README.md).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
+#include <string>
 
 #include "Scene.hpp"
 
@@ -45,34 +48,59 @@ std::vector<double> observed_orders(const Vec3& start) {
   return orders;
 }
 
+// An FLD pair of spheres in shear (kT = 0, RK3, dt) after `strain`, the second sphere starting at
+// `offset` from the first: the separation vector, and the smallest and largest centre distance
+// after any step.
+struct PairRun {
+  Vec3 separation;
+  double closest = INFINITY, farthest = 0.0;
+};
+
+PairRun pair_run(const Vec3& offset, const std::string& hydro_params, double strain, double dt) {
+  Physics ph;
+  ph.kT = 0.0;
+  ph.shear_rate = 1.0;
+  ph.volume_fraction = 0.1;
+  Scene scene(make<Shape>("shape", "sphere"), 2, 30.0, ph);
+  auto& s = *scene.system;
+  s.positions()[0] = Vec3(15.0, 15.0, 15.0);
+  s.positions()[1] = s.positions()[0] + offset;
+  scene.finish(make<HydroModel>("hydro", "fld", hydro_params), {}, HydroRequest{false, true, false});
+  RungeKutta3 rk(2);
+  PairRun run;
+  const int steps = int(std::lround(strain / dt));
+  for (int k = 0; k < steps; ++k) {
+    rk.step(s, *scene.evaluator, dt, false);
+    const double r = s.box().minimum_image(s.positions()[1] - s.positions()[0]).norm();
+    run.closest = std::min(run.closest, r);
+    run.farthest = std::max(run.farthest, r);
+  }
+  run.separation = Vec3(s.box().minimum_image(s.positions()[1] - s.positions()[0]));
+  return run;
+}
+
+// Errors of the separation vector against dt = 0.0005 for dt = 0.04 ... 0.005; `check` sees every
+// run (the reference's too).
+std::vector<double> pair_errors(const Vec3& offset, const std::string& hydro_params, double strain,
+                                const std::function<void(const PairRun&)>& check) {
+  const PairRun reference = pair_run(offset, hydro_params, strain, 0.0005);
+  check(reference);
+  std::vector<double> errors;
+  for (double dt : {0.04, 0.02, 0.01, 0.005}) {
+    const PairRun run = pair_run(offset, hydro_params, strain, dt);
+    check(run);
+    errors.push_back((run.separation - reference.separation).norm());
+  }
+  return errors;
+}
+
 // FLD pair of spheres in shear, starting at separation (-1, 2.1, 0.3) a: over strain 0.8 the
 // centre distance stays inside the 2.5 a cutoff (checked every step; 2.35 a at the start, 2.28 a
-// at the end). Error of the separation
-// vector against dt = 0.0005 for dt = 0.04 ... 0.005.
+// at the end).
 std::vector<double> lubricated_pair_orders() {
-  auto separation_after = [](double dt) {
-    Physics ph;
-    ph.kT = 0.0;
-    ph.shear_rate = 1.0;
-    ph.volume_fraction = 0.1;
-    Scene scene(make<Shape>("shape", "sphere"), 2, 30.0, ph);
-    auto& s = *scene.system;
-    s.positions()[0] = Vec3(15.0, 15.0, 15.0);
-    s.positions()[1] = Vec3(14.0, 17.1, 15.3);
-    scene.finish(make<HydroModel>("hydro", "fld", "{tolerance: 1e-12}"), {},
-                 HydroRequest{false, true, false});
-    RungeKutta3 rk(2);
-    const int steps = int(std::lround(0.8 / dt));
-    for (int k = 0; k < steps; ++k) {
-      rk.step(s, *scene.evaluator, dt, false);
-      const double r = s.box().minimum_image(s.positions()[1] - s.positions()[0]).norm();
-      EXPECT_LT(r, 2.5) << "the pair left the cutoff";
-    }
-    return Vec3(s.box().minimum_image(s.positions()[1] - s.positions()[0]));
-  };
-  const Vec3 reference = separation_after(0.0005);
-  std::vector<double> errors;
-  for (double dt : {0.04, 0.02, 0.01, 0.005}) errors.push_back((separation_after(dt) - reference).norm());
+  const auto errors = pair_errors(Vec3(-1.0, 2.1, 0.3), "{tolerance: 1e-12}", 0.8, [](const PairRun& run) {
+    EXPECT_LT(run.farthest, 2.5) << "the pair left the cutoff";
+  });
   std::vector<double> orders;
   for (std::size_t k = 0; k + 1 < errors.size(); ++k) orders.push_back(std::log2(errors[k] / errors[k + 1]));
   std::printf("pair errors %.3e %.3e %.3e %.3e\n", errors[0], errors[1], errors[2], errors[3]);
@@ -80,32 +108,12 @@ std::vector<double> lubricated_pair_orders() {
 }
 
 // FLD pair of spheres in shear that crosses the taper window and the cutoff in and out: start at
-// separation (-3, 1, 0.3) a, strain 6 (closest approach about 2.1 a). Error of the separation vector
-// against dt = 0.0005 for dt = 0.04 ... 0.005, with the given hydro parameters.
+// separation (-3, 1, 0.3) a, strain 6 (closest approach about 2.1 a), with the given hydro
+// parameters.
 std::vector<double> crossing_pair_errors(const std::string& hydro_params) {
-  auto separation_after = [&](double dt) {
-    Physics ph;
-    ph.kT = 0.0;
-    ph.shear_rate = 1.0;
-    ph.volume_fraction = 0.1;
-    Scene scene(make<Shape>("shape", "sphere"), 2, 30.0, ph);
-    auto& s = *scene.system;
-    s.positions()[0] = Vec3(15.0, 15.0, 15.0);
-    s.positions()[1] = Vec3(12.0, 16.0, 15.3);
-    scene.finish(make<HydroModel>("hydro", "fld", hydro_params), {}, HydroRequest{false, true, false});
-    RungeKutta3 rk(2);
-    const int steps = int(std::lround(6.0 / dt));
-    double closest = INFINITY;
-    for (int k = 0; k < steps; ++k) {
-      rk.step(s, *scene.evaluator, dt, false);
-      closest = std::min(closest, s.box().minimum_image(s.positions()[1] - s.positions()[0]).norm());
-    }
-    EXPECT_LT(closest, 2.2) << "the pair did not cross the taper window";
-    return Vec3(s.box().minimum_image(s.positions()[1] - s.positions()[0]));
-  };
-  const Vec3 reference = separation_after(0.0005);
-  std::vector<double> errors;
-  for (double dt : {0.04, 0.02, 0.01, 0.005}) errors.push_back((separation_after(dt) - reference).norm());
+  const auto errors = pair_errors(Vec3(-3.0, 1.0, 0.3), hydro_params, 6.0, [](const PairRun& run) {
+    EXPECT_LT(run.closest, 2.2) << "the pair did not cross the taper window";
+  });
   std::printf("%s: crossing pair errors %.3e %.3e %.3e %.3e, orders", hydro_params.c_str(), errors[0],
               errors[1], errors[2], errors[3]);
   for (std::size_t k = 0; k + 1 < errors.size(); ++k)
