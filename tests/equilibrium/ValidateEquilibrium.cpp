@@ -8,8 +8,8 @@
 // repulsion's overlap population that FLD's steps do not reach, no thermal drift, the abrupt
 // cutoff), and pressure_spheres, pressure_dicolloid02,
 // pressure_dicolloid1 (free_draining with the widened repulsion of OsmoticPressureTest at dt 5e-5: the stress
-// observer's Z against the oracle), pressure_<shape>_auto (the same at dt: auto, frame 1e-3, tolerance 1e-3
-// tolerance). Keys: n, phi, dt, duration, equilibrate, blocks, every, seed, hydro, hydro_params,
+// observer's Z against the oracle), pressure_<shape>_auto (the same at dt: auto, frame 1e-3,
+// tolerance 1e-3 a). Keys: n, phi, dt, duration, equilibrate, blocks, every, seed, hydro, hydro_params,
 // force_params, drift (midpoint|none), oracle_sweeps, oracle_blocks, stress_every, max_overlap,
 // adaptive (0|1), tolerance, reject_at, rejected (bridge|redraw), hard_core (0|1: the oracle's), runs (R > 0:
 // R independent runs of equilibrate + duration, seeds seed .. seed + R - 1, one block each, as the CI tests
