@@ -42,7 +42,7 @@ POINTS = {
                                       tolerances=[1e-2, 3e-3, 1e-3, 3e-4]),
     "homonuclear-phi0.3-pe1000": dict(shape="{plugin: dicolloid, a: 1.0, b: 1.0, c: 0.2}", phi=0.3, pe=1000,
                                       hydro="fld", paper_dt=1e-3, settle=1.0, horizon=0.2, reference=8,
-                                      tolerances=[1e-2, 3e-3, 1e-3, 3e-4]),
+                                      tolerances=[3e-3, 1e-3, 3e-4, 1e-4]),
     "free_draining-spheres-phi0.3-pe0": dict(shape="{plugin: sphere}", phi=0.3, pe=0, hydro="free_draining",
                                              paper_dt=1e-4, settle=0.05, horizon=0.02, reference=10,
                                              tolerances=[3e-3, 1e-3, 3e-4, 1e-4]),
