@@ -1,5 +1,6 @@
 // Adaptive steps (`dt: auto`) against the Monte Carlo oracle of the same potential, at Pe = 0.
-// Free-draining spheres at phi = 0.3 are the hard case: the mobility at contact is the isolated
+// Free-draining spheres and homonuclear dicolloids (c/a 0.2, at the end) at phi = 0.3 are the
+// hard case: the mobility at contact is the isolated
 // body's, so the repulsion (0 to 166.6 kT/a over gaps 1e-3 to 1e-5 a, then a constant force below
 // 1e-5 a, overlaps included: exp(-U/kT) decays over 0.006 a of overlap) is stiff against the
 // Brownian step, and at the examples' fixed dt = 1e-3 the structure is wrong (issue 13). At
@@ -84,15 +85,30 @@ EquilibriumScene free_draining_spheres() {
   return s;
 }
 
+oracle::OracleResult oracle_of(const EquilibriumScene& scene) {
+  oracle::OracleOptions o;
+  o.bin_width = 0.01;
+  o.sweeps = 20000;
+  o.blocks = 40;
+  o.node_distribution = false;
+  return run_scene_oracle(scene, o);
+}
+
 const oracle::OracleResult& sphere_oracle() {
-  static const oracle::OracleResult r = [] {
-    oracle::OracleOptions o;
-    o.bin_width = 0.01;
-    o.sweeps = 20000;
-    o.blocks = 40;
-    o.node_distribution = false;
-    return run_scene_oracle(free_draining_spheres(), o);
-  }();
+  static const oracle::OracleResult r = oracle_of(free_draining_spheres());
+  return r;
+}
+
+// Homonuclear dicolloids (the paper's c/a = 0.2), the same fluid otherwise.
+EquilibriumScene free_draining_dicolloids() {
+  EquilibriumScene s = free_draining_spheres();
+  s.shape = "dicolloid";
+  s.shape_params = "{a: 1, b: 1, c: 0.2}";
+  return s;
+}
+
+const oracle::OracleResult& dicolloid_oracle() {
+  static const oracle::OracleResult r = oracle_of(free_draining_dicolloids());
   return r;
 }
 
@@ -103,27 +119,26 @@ struct Verdict {
 
 // Independent runs as the blocks (BrownianEquilibrium.hpp): run k has seed opt.seed + k, its own
 // hard-body Monte Carlo start and noise, and is one block of g and Z.
-Verdict compare(const BrownianOptions& opt, int runs, const std::string& what) {
-  const BrownianEquilibrium bd = run_brownian_replicas(free_draining_spheres(), opt, runs);
-  const oracle::OracleResult& mc = sphere_oracle();
+Verdict compare(const EquilibriumScene& scene, const oracle::OracleResult& mc, const BrownianOptions& opt,
+                int runs, const std::string& what) {
+  const BrownianEquilibrium bd = run_brownian_replicas(scene, opt, runs);
   const auto o = comparison_range();
   Verdict v;
   v.g = oracle::compare_gr(bd.g.rebinned(2), mc.bodies.rebinned(2), o);
   v.Z = oracle::compare_means(bd.Z, mc.Z);
-  std::cout << what << ": " << free_draining_spheres().describe() << "\n  " << runs << " runs, " << bd.steps
-            << " frames, " << bd.accepted << " steps, " << bd.rejected << " rejected, smallest gap "
-            << bd.min_gap << " a, " << bd.seconds << " s\n  Z = " << bd.Z.mean << " +- " << bd.Z.se
-            << " against the oracle's " << mc.Z.mean << " +- " << mc.Z.se << " (ratio " << v.Z.ratio << ", z "
-            << v.Z.z << ")\n"
+  std::cout << what << ": " << scene.describe() << "\n  " << runs << " runs, " << bd.steps << " frames, "
+            << bd.accepted << " steps, " << bd.rejected << " rejected, smallest gap " << bd.min_gap << " a, "
+            << bd.seconds << " s\n  Z = " << bd.Z.mean << " +- " << bd.Z.se << " against the oracle's "
+            << mc.Z.mean << " +- " << mc.Z.se << " (ratio " << v.Z.ratio << ", z " << v.Z.z << ")\n"
             << v.g.table(o);
   return v;
 }
 
-bool agrees(const Verdict& v) {
-  return v.g.pass() && std::fabs(v.Z.z) < 3.0;
+Verdict compare(const BrownianOptions& opt, int runs, const std::string& what) {
+  return compare(free_draining_spheres(), sphere_oracle(), opt, runs, what);
 }
 
-TEST(AdaptiveEquilibrium, FreeDrainingSpheresMatchTheOracle) {
+BrownianOptions adaptive_options() {
   BrownianOptions opt;
   opt.adaptive = true;
   opt.dt = 1e-3;  // dt_max: the frame
@@ -131,7 +146,30 @@ TEST(AdaptiveEquilibrium, FreeDrainingSpheresMatchTheOracle) {
   opt.equilibrate = kEquilibrate;
   opt.duration = kDuration;
   opt.sample_every = 1;
-  const Verdict v = compare(opt, kRuns, "dt: auto, tolerance 5e-4 a");
+  return opt;
+}
+
+bool agrees(const Verdict& v) {
+  return v.g.pass() && std::fabs(v.Z.z) < 3.0;
+}
+
+TEST(AdaptiveEquilibrium, FreeDrainingSpheresMatchTheOracle) {
+  const Verdict v = compare(adaptive_options(), kRuns, "dt: auto, tolerance 5e-4 a");
+  EXPECT_TRUE(v.g.pass()) << "g(r) differs from the oracle";
+  EXPECT_LT(std::fabs(v.Z.z), 3.0) << "Z differs from the oracle's by more than 3 standard errors";
+}
+
+// The same for homonuclear dicolloids (body-centre g(r); Z from the molecular virial), each run
+// relaxed for 0.15 a^2/D0 (0.03 is too short from the hard-body start here: with it the two bins
+// 2.78-2.86 a came out 5 % low, z -4.2 and -4.0, chi-square p 0.04; with 0.15: max |z| 3.07,
+// chi-square 40.4 on 50 bins, p 0.83, Z 4.053 +- 0.149 against 3.916 +- 0.032, z 0.9; about 55
+// CPU s). Broken variant, measured once with these runs: the fixed step 1e-3 gives Z 10.6 +- 0.4
+// (ratio 2.71, z 16.1), g max |z| 13.4, chi-square 227 on 51 bins: fails.
+TEST(AdaptiveEquilibrium, FreeDrainingDicolloidsMatchTheOracle) {
+  BrownianOptions opt = adaptive_options();
+  opt.equilibrate = 0.15;
+  const Verdict v = compare(free_draining_dicolloids(), dicolloid_oracle(), opt, kRuns,
+                            "dicolloids c/a 0.2, dt: auto, tolerance 5e-4 a");
   EXPECT_TRUE(v.g.pass()) << "g(r) differs from the oracle";
   EXPECT_LT(std::fabs(v.Z.z), 3.0) << "Z differs from the oracle's by more than 3 standard errors";
 }
