@@ -213,3 +213,72 @@ TEST(ResistanceModel, AssemblyNoiseAndSolveAreIndependentOfThreadCount) {
   for (std::size_t k = 0; k < one.size(); ++k) EXPECT_EQ(one[k], two[k]) << k;
 }
 #endif
+
+// refactor_every: 2 (the default) lets the later assemblies of a step reuse the preconditioner
+// built at the step's first assembly. That reuse must (1) really happen, (2) leave the answer a
+// converged solve of the *current* matrix, and (3) never reach into the next step: a run resumed
+// at step s starts with a fresh model, so step s must solve bit-identically whether or not the
+// model assembled anything at step s - 1 (an odd number of assemblies there included).
+TEST(ResistanceModel, FactorIsReusedWithinAStepAndNeverAcrossSteps) {
+  const Config setup = kSetups[0];
+  auto configuration = [&](unsigned seed) {
+    System s(shape_of(setup), setup.n, setup.box, physics(1.0, 1.0, 0.3));
+    random_configuration(s, 0.01, seed);
+    return s;
+  };
+  const System A = configuration(41), B = configuration(42), C = configuration(43);
+  auto model = [&](int refactor_every) {
+    ModelSettings s = lubrication_settings();
+    s.tolerance = 1e-8;
+    s.refactor_every = refactor_every;
+    auto m = std::make_unique<ResistanceModel>(s);
+    HydroRequest req;
+    m->configure(A, req);
+    return m;
+  };
+  const double range = model(1)->pair_range(A);
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<double> F(6 * setup.n);
+  for (double& f : F) f = u(rng);
+  // Assemble system `s` at `step` and solve from a zero start.
+  auto assemble_at = [&](ResistanceModel& m, System s, std::int64_t step) {
+    s.set_step(step);
+    m.assemble(s, brute_force_pairs(s, range));
+  };
+  auto solve = [&](ResistanceModel& m, System s, std::int64_t step) {
+    s.set_step(step);
+    std::vector<double> dU(F.size(), 0.0);
+    m.solve(s, F.data(), dU.data());
+    return dU;
+  };
+
+  // (3) One assembly at step 0 (A), then step 1 (B): as a fresh model's first assembly of step 1.
+  auto carried = model(2), fresh = model(2);
+  assemble_at(*carried, A, 0);
+  assemble_at(*carried, B, 1);
+  const std::vector<double> x_carried = solve(*carried, B, 1);
+  assemble_at(*fresh, B, 1);
+  const std::vector<double> x_fresh = solve(*fresh, B, 1);
+  EXPECT_EQ(carried->last_solve().iterations, fresh->last_solve().iterations);
+  for (std::size_t k = 0; k < F.size(); ++k) ASSERT_EQ(x_carried[k], x_fresh[k]) << k;
+
+  // (1), (2) Second assembly of step 1 (C) reuses B's factor: converged on C's matrix, close to a
+  // solve with C's own factor but not bit-identical to it (the preconditioner did differ).
+  assemble_at(*carried, C, 1);
+  const std::vector<double> x_reused = solve(*carried, C, 1);
+  auto own = model(1);
+  assemble_at(*own, C, 1);
+  const std::vector<double> x_own = solve(*own, C, 1);
+  EXPECT_LE(carried->last_solve().residual, 1e-8);
+  const Eigen::MatrixXd R = own->resistance().dense();
+  const Eigen::Map<const Eigen::VectorXd> xr(x_reused.data(), Eigen::Index(F.size()));
+  const Eigen::Map<const Eigen::VectorXd> xo(x_own.data(), Eigen::Index(F.size()));
+  const Eigen::VectorXd f = Eigen::Map<const Eigen::VectorXd>(F.data(), Eigen::Index(F.size())) +
+                            Eigen::Map<const Eigen::VectorXd>(own->strain_force().data(), Eigen::Index(F.size()));
+  EXPECT_LE((R * xr - f).norm(), 1e-8 * f.norm() * (1.0 + 1e-6));  // C's matrix, not B's
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(R);
+  const double cond = eig.eigenvalues().maxCoeff() / eig.eigenvalues().minCoeff();
+  EXPECT_LE((xr - xo).norm() / xo.norm(), 2.0 * cond * 1e-8);
+  EXPECT_NE((xr - xo).norm(), 0.0) << "the second assembly of the step did not reuse the factor";
+}

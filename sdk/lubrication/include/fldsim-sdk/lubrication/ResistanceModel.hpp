@@ -33,6 +33,10 @@ struct ModelSettings {
   double tolerance = 1e-6;
   int max_iterations = 1000;
   Preconditioner preconditioner = Preconditioner::IncompleteCholesky;
+  // Assemblies per preconditioner build within one step: 1 builds it at every assembly, 2 (the
+  // default) lets the midpoint stage reuse the factor of the step's start. A factor is never
+  // carried into the next step, so a resumed run solves bit-identically.
+  int refactor_every = 2;
 };
 
 // Declare and read the parameters common to lubrication and fld. `conventions: lammps` presets
@@ -76,6 +80,9 @@ class ResistanceModel : public HydroModel {
   std::vector<double> strain_force_, rhs_;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> body_pairs_;  // pattern scratch
   SolveStats stats_;
+  // The step of the current preconditioner and the assemblies since it was built (refactor_every).
+  std::int64_t factor_step_ = -1;
+  int assemblies_since_factor_ = 0;
   bool configured_ = false;
 };
 
