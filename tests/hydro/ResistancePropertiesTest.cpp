@@ -274,8 +274,9 @@ TEST(ResistanceModel, FactorIsReusedWithinAStepAndNeverAcrossSteps) {
   const Eigen::MatrixXd R = own->resistance().dense();
   const Eigen::Map<const Eigen::VectorXd> xr(x_reused.data(), Eigen::Index(F.size()));
   const Eigen::Map<const Eigen::VectorXd> xo(x_own.data(), Eigen::Index(F.size()));
-  const Eigen::VectorXd f = Eigen::Map<const Eigen::VectorXd>(F.data(), Eigen::Index(F.size())) +
-                            Eigen::Map<const Eigen::VectorXd>(own->strain_force().data(), Eigen::Index(F.size()));
+  const Eigen::VectorXd f =
+      Eigen::Map<const Eigen::VectorXd>(F.data(), Eigen::Index(F.size())) +
+      Eigen::Map<const Eigen::VectorXd>(own->strain_force().data(), Eigen::Index(F.size()));
   EXPECT_LE((R * xr - f).norm(), 1e-8 * f.norm() * (1.0 + 1e-6));  // C's matrix, not B's
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(R);
   const double cond = eig.eigenvalues().maxCoeff() / eig.eigenvalues().minCoeff();
