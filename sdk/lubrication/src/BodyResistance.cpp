@@ -44,6 +44,7 @@ bool BodyResistance::update(const System& system, const NodePairList& pairs) {
     block_ii_.resize(n);
     block_jj_.resize(n);
     block_ij_.resize(n);
+    centred_.resize(n);
     pair_force_.resize(n);
   } else {
     for (std::size_t k = 0; k < accepted_.size(); ++k) {
@@ -65,13 +66,15 @@ bool BodyResistance::update(const System& system, const NodePairList& pairs) {
     BodyRows& B = rows_[k];
     if (centred_gram_ && xa.isZero(0.0) && xb.isZero(0.0)) {
       // Both nodes at their bodies' centres (spheres): B = sqrt(w) S, and the Gram blocks in
-      // closed form instead of three 6 x 8 x 6 products.
+      // closed form (instead of three 6 x 8 x 6 products), evaluated by add_to from the
+      // direction and coefficients kept here: three stored 6 x 6 blocks per pair would cost more
+      // memory traffic than the arithmetic.
       B = S;
       if (p.weight != 1.0) B *= std::sqrt(p.weight);
-      LubricationPair::centred_gram(p.separation / p.separation.norm(), c, p.weight, block_ii_[k],
-                                    block_jj_[k], block_ij_[k]);
+      centred_[k] = {p.separation / p.separation.norm(), c, p.weight, true};
       continue;
     }
+    centred_[k].on = false;
     // Fixed-size products as lazy (coefficient) products: Eigen 3.4 otherwise sends these small
     // shapes to its general blocked kernel, which dominated the assembly. A node at its body's
     // centre (every sphere) has identity kinematics.
@@ -107,6 +110,15 @@ void BodyResistance::add_to(BlockSparseMatrix& A) const {
   // Serial, in pair order: every block receives its terms in a fixed order.
   for (std::size_t k = 0; k < accepted_.size(); ++k) {
     const Accepted& p = accepted_[k];
+    const Centred& c = centred_[k];
+    if (c.on) {
+      Mat6 ii, jj, ij;
+      LubricationPair::centred_gram(c.d, c.c, c.weight, ii, jj, ij);
+      A.diagonal(p.body_i) += ii;
+      A.diagonal(p.body_j) += jj;
+      A.upper(p.upper) += ij;
+      continue;
+    }
     A.diagonal(p.body_i) += block_ii_[k];
     A.diagonal(p.body_j) += block_jj_[k];
     A.upper(p.upper) += block_ij_[k];

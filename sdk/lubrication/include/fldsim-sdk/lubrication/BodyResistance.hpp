@@ -80,6 +80,14 @@ class BodyResistance {
   std::vector<Accepted> accepted_, candidates_;
   std::vector<BodyRows> rows_;
   std::vector<Mat6> block_ii_, block_jj_, block_ij_;
+  // Pairs of centred nodes: their Gram blocks come from LubricationPair::centred_gram in add_to.
+  struct Centred {
+    Vec3 d = Vec3::Zero();  // unit separation
+    LubricationCoefficients c;
+    double weight = 1.0;
+    bool on = false;
+  };
+  std::vector<Centred> centred_;
   std::vector<Eigen::Matrix<double, 12, 1>> pair_force_;  // scratch: per-pair body wrenches
   std::vector<double> radii_;
   bool centred_gram_ = true;
