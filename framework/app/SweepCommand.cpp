@@ -13,6 +13,7 @@
 #include "plugins/PluginRegistry.hpp"
 #include "run/Experiment.hpp"
 #include "sweep/LocalSweep.hpp"
+#include "sweep/StepProbe.hpp"
 #include "sweep/StudyTable.hpp"
 
 namespace fldsim {
@@ -28,6 +29,8 @@ const char* kSweepHelp =
     "At the end, OUTPUT_DIR/study.csv and study.h5 gather every point's results.\n"
     "\n"
     "  --dry-run            list the points, their state and estimated CPU time; run nothing\n"
+    "  --timed K            estimate each point's cost from K timed frames of the point itself (one short\n"
+    "                       run each, before anything else; for --dry-run, --slurm and the run order)\n"
     "  --jobs K             points at once on this machine (default: cores / threads per point)\n"
     "  --rerun-changed      re-run changed points (their old files are renamed *.superseded)\n"
     "  --collect            only (re)write study.csv and study.h5 from the result files\n"
@@ -90,7 +93,7 @@ void print_slurm_script(const SweepPlan& plan, const std::vector<PointState>& po
 int sweep_command(const std::vector<std::string>& args) {
   std::string file;
   bool dry_run = false, rerun_changed = false, collect_only = false, slurm = false;
-  int jobs = 0, ranks = 0;
+  int jobs = 0, ranks = 0, timed_frames = 0;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     auto integer = [&](const char* what) {
@@ -115,6 +118,8 @@ int sweep_command(const std::vector<std::string>& args) {
       slurm = true;
     } else if (a == "--jobs") {
       jobs = integer("a number of points");
+    } else if (a == "--timed") {
+      timed_frames = integer("a number of frames");
     } else if (a == "--ranks") {
       ranks = integer("a number of MPI ranks");
     } else if (!a.empty() && a[0] == '-') {
@@ -166,6 +171,13 @@ int sweep_command(const std::vector<std::string>& args) {
     }
   }
   if (mpi && mpi_broadcast(ok) == 0) return 2;
+  if (mpi && timed_frames > 0) {
+    if (rank == 0)
+      log << "fldsim sweep: --timed is for a local sweep, --dry-run or --slurm; an MPI sweep orders its "
+             "points by the cost model (time them first with --dry-run --timed K)\n";
+    return 2;
+  }
+  if (timed_frames > 0) time_points(plan, points, timed_frames, "/proc/self/exe", std::cerr);
 
   if (slurm) {
     const int n = ranks ? ranks : int(std::min<std::size_t>(plan.points.size(), 32));

@@ -8,8 +8,8 @@
 // repulsion's overlap population that FLD's steps do not reach, no thermal drift, the abrupt
 // cutoff), and pressure_spheres, pressure_dicolloid02,
 // pressure_dicolloid1 (free_draining with the widened repulsion of OsmoticPressureTest at dt 5e-5: the stress
-// observer's Z against the oracle), pressure_<shape>_auto (the same at dt: auto, frame 1e-3, default
-// tolerance). Keys: n, phi, dt, duration, equilibrate, blocks, every, seed, hydro, hydro_params,
+// observer's Z against the oracle), pressure_<shape>_auto (the same at dt: auto, frame 1e-3,
+// tolerance 1e-3 a). Keys: n, phi, dt, duration, equilibrate, blocks, every, seed, hydro, hydro_params,
 // force_params, drift (midpoint|none), oracle_sweeps, oracle_blocks, stress_every, max_overlap,
 // adaptive (0|1), tolerance, reject_at, rejected (bridge|redraw), hard_core (0|1: the oracle's), runs (R > 0:
 // R independent runs of equilibrate + duration, seeds seed .. seed + R - 1, one block each, as the CI tests
@@ -116,7 +116,7 @@ std::map<std::string, Case> cases() {
     p.bd.max_overlap = INFINITY;  // this potential's equilibrium has overlaps deeper than the guard's 0.1 a
     p.pressure = true;
     c[name] = p;
-    // The same at dt: auto (frame 1e-3 a^2/D0, default tolerance): the steps shrink where pairs
+    // The same at dt: auto (frame 1e-3 a^2/D0, tolerance 1e-3 a): the steps shrink where pairs
     // touch. (With the default repulsion, N = 125, tolerance 1e-3 left Z 5 % high and 5e-4 gave
     // Z/Z_MC = 1.008 +- 0.017: docs/time_steps.md; override with force_params= tolerance=.)
     Case q = p;

@@ -8,6 +8,7 @@
 #include <set>
 
 #include "fldsim/error.hpp"
+#include "sweep/StepProbe.hpp"
 #include "sweep/SweepPlan.hpp"
 
 namespace fldsim {
@@ -153,6 +154,21 @@ overrides:
   EXPECT_EQ(value_of(plan.points[0], "plugins.paths"), "[" + (dir / "mine").string() + ", /opt/theirs]");
   EXPECT_EQ(value_of(plan.points[1], "system.init.file"), "/abs/b.h5");
   EXPECT_EQ(plan.points[0].label, "file-starts_a.h5") << "labels keep the values as written";
+}
+
+// The probe reads the run's own loop time: the last line starting "done: " (a "done:" inside
+// another line, e.g. a progress message, is not it), its number before "ms/step".
+TEST(StepProbe, ReadsTheLoopTimeOfTheLastDoneLine) {
+  EXPECT_DOUBLE_EQ(
+      logged_ms_per_frame("step 5/5\ndone: 5 steps in 0.1 s (20.500000 ms/step, 3 CG iterations/step "
+                          "(all solves), 0 neighbour rebuilds); total 0.2 s\nsteps: ...\n"),
+      20.5);
+  EXPECT_DOUBLE_EQ(logged_ms_per_frame("done: 1 steps in 1 s (2.000000 ms/step, x)\nwarning: not done: yet\n"
+                                       "done: 2 steps in 1 s (3.000000 ms/step, x)\n"),
+                   3.0);
+  EXPECT_LT(logged_ms_per_frame("error: run.dt: expected a number\n"), 0.0);
+  EXPECT_LT(logged_ms_per_frame("done: 0 steps in 0 s (- ms/step, 0 CG iterations/step)\n"), 0.0);
+  EXPECT_LT(logged_ms_per_frame("note: done: 3 steps (1.0 ms/step,\n"), 0.0);
 }
 
 }  // namespace

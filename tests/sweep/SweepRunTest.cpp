@@ -16,6 +16,7 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <set>
 #include <sstream>
 #include <thread>
 
@@ -178,6 +179,48 @@ TEST(Sweep, EveryPointRunsOnceAndTheStudyTableHoldsItsResults) {
     if (name.rfind("study.", 0) != 0) {
       EXPECT_EQ(t, before.at(name)) << name << " was touched by a sweep with nothing to do";
     }
+}
+
+// `--dry-run --timed K`: every point is timed by a short run of itself, its listed cost is its
+// frames x the measured time per frame, and nothing is left behind (no result, log or scratch file).
+TEST(Sweep, TimedDryRunMeasuresEveryPointAndLeavesNoFile) {
+  const fs::path d = fresh_dir("timed");
+  auto probes = [] {
+    std::set<std::string> out;
+    for (const auto& e : fs::directory_iterator(fs::temp_directory_path()))
+      if (e.path().filename().string().rfind("fldsim-sweep-probe-", 0) == 0) out.insert(e.path().string());
+    return out;
+  };
+  const auto probes_before = probes();
+  const Result r = run(sweep(d, "--dry-run --timed 5"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  // "timing LABEL (K frames) ... X ms/frame" for each point, then the listing with "(timed)" costs.
+  std::istringstream lines(r.output);
+  std::map<std::string, double> ms;
+  std::map<std::string, std::string> listed;
+  for (std::string line; std::getline(lines, line);) {
+    char label[128];
+    int frames = 0;
+    double x = 0;
+    if (std::sscanf(line.c_str(), "timing %127s (%d frames) ... %lf ms/frame", label, &frames, &x) == 3) {
+      EXPECT_EQ(frames, 5) << line;
+      ms[label] = x;
+    }
+    if (line.find("(timed)") != std::string::npos && line.find("to run") != std::string::npos)
+      listed[line.substr(0, line.find(' '))] = line;
+  }
+  ASSERT_EQ(ms.size(), 4u) << r.output;
+  ASSERT_EQ(listed.size(), 4u) << r.output;
+  for (const auto& [label, x] : ms) {
+    EXPECT_GT(x, 0.0) << label;
+    // 400 frames (0.4 / 1e-3) x x ms on 1 thread, as format_duration prints seconds below 10 s.
+    const double seconds = 400 * x * 1e-3;
+    char expected[32];
+    std::snprintf(expected, sizeof expected, seconds < 10 ? "%.1f s (timed)" : "%.0f s (timed)", seconds);
+    EXPECT_NE(listed.at(label).find(expected), std::string::npos) << listed.at(label) << " vs " << expected;
+  }
+  EXPECT_FALSE(fs::exists(d / "results")) << "a dry run wrote into the output directory";
+  EXPECT_EQ(probes(), probes_before) << "a probe's scratch directory was left behind";
 }
 
 TEST(Sweep, AChangedBaseIsRefusedBeforeAnythingRunsAndReRunOnlyOnRequest) {

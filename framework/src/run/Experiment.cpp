@@ -75,7 +75,7 @@ ParamSchema run_schema() {
            "shortest step: a step that a retry would cut below it stops the run with a checkpoint; "
            "0 = the frame (dt or dt_max) / 2^24")
       .at_least(0.0);
-  s.number("tolerance", 1e-3, "a",
+  s.number("tolerance", 1e-4, "a",
            "with dt: auto, the largest local error of a step: the embedded estimate of the displacement "
            "error of any body's surface point (midpoint - Euler for Brownian runs, RK3 - midpoint rule for "
            "kT = 0)")

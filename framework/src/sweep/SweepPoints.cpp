@@ -161,6 +161,8 @@ std::vector<PointState> check_sweep_points(const SweepPlan& plan) {
       st.nodes = report.nodes;
       st.cost_seconds = estimated_cpu_seconds(st.hydro, st.steps, st.nodes, ex.brownian);
       st.adaptive = ex.dt_auto;
+      st.frame = ex.dt;
+      for (const auto& o : ex.observers) st.observer_every.push_back(o.every);
     } catch (const ConfigError& e) {
       std::istringstream lines(point_errors(e.what(), p));
       for (std::string line; std::getline(lines, line);)
@@ -199,8 +201,9 @@ void print_sweep_listing(const SweepPlan& plan, const std::vector<PointState>& p
   for (const auto& st : points) {
     const SweepPoint& p = plan.points[st.index];
     out << std::left << std::setw(int(width)) << p.label << "  " << std::setw(10) << to_string(st.status)
-        << "  " << std::setw(12) << st.steps << std::setw(8) << st.nodes << "  " << (st.adaptive ? ">= " : "")
-        << format_duration(st.cost_seconds) << "\n";
+        << "  " << std::setw(12) << st.steps << std::setw(8) << st.nodes << "  "
+        << (st.adaptive && !st.timed ? ">= " : "") << format_duration(st.cost_seconds)
+        << (st.timed ? " (timed)" : "") << "\n";
     all += st.cost_seconds;
     if (st.status != PointStatus::Done) todo += st.cost_seconds;
     ++counts[int(st.status)];
@@ -211,8 +214,15 @@ void print_sweep_listing(const SweepPlan& plan, const std::vector<PointState>& p
       << " to go (" << format_duration(all) << " for the whole sweep; " << plan.threads
       << " thread(s) per point)\n";
   for (const auto& st : points)
-    if (st.adaptive) {
-      out << "\">=\": dt: auto; the estimate counts one step per frame, and adaptive runs take more\n";
+    if (st.timed) {
+      out << "\"(timed)\": the point's frames x its measured time per frame (--timed); the others: the cost "
+             "model\n";
+      break;
+    }
+  for (const auto& st : points)
+    if (st.adaptive && !st.timed) {
+      out << "\">=\": dt: auto; the estimate counts one step per frame, and adaptive runs take more "
+             "(--timed K measures them)\n";
       break;
     }
   for (const auto& st : points)

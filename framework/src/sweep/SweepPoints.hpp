@@ -29,8 +29,11 @@ struct PointState {
   bool interrupted_output = false;  // Resume of a run stopped by a signal: its partial result is kept aside
   std::int64_t steps = 0, nodes = 0;
   std::string hydro;
+  std::vector<std::int64_t> observer_every;  // each observer's sampling period, in frames
+  double frame = 0.0;         // the frame (dt, or dt_max with dt: auto), in the run's time unit
   double cost_seconds = 0.0;  // estimated CPU seconds (cost model, docs/sweep.md)
-  bool adaptive = false;      // dt: auto: the estimate counts one step per frame, a lower bound
+  bool adaptive = false;      // dt: auto: the model counts one step per frame, a lower bound
+  bool timed = false;         // cost_seconds from timed frames of the point (--timed; StepProbe.hpp)
 };
 
 // Validates every point (all problems of all points at once: ConfigError with one line each,
