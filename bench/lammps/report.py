@@ -131,6 +131,8 @@ def main():
     ap.add_argument("--count-steps", type=int, required=True)
     ap.add_argument("--dt", type=float, required=True)
     ap.add_argument("--pe", type=float, required=True)
+    ap.add_argument("--phi", type=float, default=0.45)
+    ap.add_argument("--before", default="", help="name of the BEFORE build (run.sh): adds its row")
     ap.add_argument("--lammps-version", default="unknown")
     a = ap.parse_args()
     d = a.outdir
@@ -147,8 +149,11 @@ def main():
     else:
         rows.append(lammps_row(a, d, p))
     # fldsim
-    for variant, forms in (("lammps", "LAMMPS forms (conventions: lammps)"),
-                           ("default", "fldsim defaults (Jeffrey-Onishi pump, twist, fldsim R_0 fit)")):
+    variants = [("lammps", "LAMMPS forms (conventions: lammps)"),
+                ("default", "fldsim defaults (Jeffrey-Onishi pump, twist, fldsim R_0 fit)")]
+    if a.before:
+        variants.append(("before", f"LAMMPS forms, **before** ({a.before})"))
+    for variant, forms in variants:
         cpu, lo, hi = per_step_cpu(d, f"fldsim-{variant}", a.repeat, a.steps)
         _, ms_long, cg_last = fldsim_log(p(f"fldsim-{variant}.1.log"))
         hits = gdb_hits(p(f"fldsim-{variant}.gdb"))
@@ -175,7 +180,7 @@ def main():
                  "two-point fit kappa = 6106/a loses atoms in LAMMPS at this dt)",
         "clamp": "no interparticle force in either code, gap floor 1e-5 a (the bench's original scene)",
     }[a.scene]
-    out.append(f"## Scene '{a.scene}': fldsim against LAMMPS FLD (N = 1000 spheres, phi = 0.45, Pe = 10, one thread)\n")
+    out.append(f"## Scene '{a.scene}': fldsim against LAMMPS FLD (N = 1000 spheres, phi = {a.phi:g}, Pe = 10, one thread)\n")
     out.append(f"{datetime.datetime.utcnow():%Y-%m-%d %H:%M} UTC, {platform.node()}, commit {commit}, "
                f"LAMMPS {a.lammps_version}. Scene: {scene}. Same start (fldsim hard-sphere MC, written to a LAMMPS data file), "
                f"dt = {a.dt:g} a^2/D0, CG relative residual 1e-4, lubrication cutoff 2.5 a, "

@@ -9,7 +9,10 @@
 # period in steps, 1), COUNT_CG (1: count CG iterations in extra runs under gdb, 0: skip),
 # COUNT_STEPS (steps of those counting runs, 50), FRESH_START (1: redo the Monte Carlo start even
 # if OUTDIR/start.h5 exists; it is deterministic, so it is reused by default), REPEAT (timed runs
-# of each code, taking turns; the fastest is reported, 3).
+# of each code, taking turns; the fastest is reported, 3), PHI (volume fraction of the start and the
+# fldsim scene, 0.45; give each PHI its own OUTDIR: the start is reused), BEFORE (another fldsim
+# build directory, e.g. of an earlier commit: its LAMMPS-forms run is timed in the same turns and
+# reported as a row "before", for before/after figures from one run; BEFORE_LABEL names it).
 set -euo pipefail
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -29,6 +32,8 @@ export GOMP_SPINCOUNT="${GOMP_SPINCOUNT:-10000}"
 COUNT_STEPS="${COUNT_STEPS:-50}"
 FRESH_START="${FRESH_START:-0}"
 REPEAT="${REPEAT:-3}"
+PHI="${PHI:-0.45}"
+BEFORE="${BEFORE:-}"
 DT=1.0e-4   # a^2/D0, both codes
 PE=10
 # SCENE (README.md, "The three scenes"): the settings of both codes.
@@ -85,7 +90,8 @@ rm -f lammps.failed
 if [[ -n "${START:-}" && ! -f start.h5 ]]; then cp "$START" start.h5; fi
 if [[ "$FRESH_START" == 1 || ! -f start.h5 ]]; then
   echo "start: fldsim hard-sphere Monte Carlo, N = 1000, phi = 0.45 (a few minutes)" >&2
-  "$fldsim" run "$here/start.yaml" -o "$outdir/start.h5" --overwrite > start.log 2>&1 ||
+  "$fldsim" run "$here/start.yaml" -o "$outdir/start.h5" --overwrite --set system.volume_fraction="$PHI" \
+    > start.log 2>&1 ||
     { cat start.log >&2; exit 1; }
 else
   echo "start: reusing $outdir/start.h5 (FRESH_START=1 to redo it)" >&2
@@ -111,10 +117,11 @@ run_lammps_once() {
 
 # run_fldsim NAME STEPS [--set ...]: one fldsim run under /usr/bin/time.
 run_fldsim() {
-  local name="$1" steps="$2"
+  local name="$1" steps="$2" exe="$fldsim"
   shift 2
-  /usr/bin/time -f "%U %S %e" -o "$name.time" "$fldsim" run "$here/scene.yaml" -o "$outdir/$name.h5" \
-    --overwrite --set system.init.file="$outdir/start.h5" \
+  if [[ "$name" == fldsim-before* ]]; then exe="$BEFORE/bin/fldsim"; fi
+  /usr/bin/time -f "%U %S %e" -o "$name.time" "$exe" run "$here/scene.yaml" -o "$outdir/$name.h5" \
+    --overwrite --set system.init.file="$outdir/start.h5" --set system.volume_fraction="$PHI" \
     --set run.duration="$("$PY" -c "print($steps * $DT)")" \
     --set "observers.0.start=$("$PY" -c "print($WARMUP * $DT)")" --set "observers.0.every=$EVERY" \
     "${scene_set[@]}" "$@" > "$name.log" 2>&1 || { cat "$name.log" >&2; exit 1; }
@@ -133,11 +140,13 @@ echo "timing: warm-up runs ($WARMUP steps)" >&2
 run_lammps lammps-short "$WARMUP" 0
 run_fldsim fldsim-lammps-short "$WARMUP" "${lammps_forms[@]}"
 run_fldsim fldsim-default-short "$WARMUP"
+if [[ -n "$BEFORE" ]]; then run_fldsim fldsim-before-short "$WARMUP" "${lammps_forms[@]}"; fi
 for ((r = 1; r <= REPEAT; ++r)); do
   echo "timing: repeat $r of $REPEAT: LAMMPS, fldsim (LAMMPS forms), fldsim (defaults), $total steps each" >&2
   run_lammps "lammps.$r" "$WARMUP" "$STEPS"
   run_fldsim "fldsim-lammps.$r" "$total" "${lammps_forms[@]}"
   run_fldsim "fldsim-default.$r" "$total"
+  if [[ -n "$BEFORE" ]]; then run_fldsim "fldsim-before.$r" "$total" "${lammps_forms[@]}"; fi
 done
 
 # --- CG iterations: count matrix-vector products in separate runs under gdb ------------------
@@ -173,19 +182,24 @@ if [[ "$COUNT_CG" == 1 ]] && command -v gdb > /dev/null; then
     lmp -in "$here/fld.lmp" -log none -screen none -nocite -var data "$outdir/start.data" -var warm 0 \
     -var steps "$COUNT_STEPS" -var dt "$DT" -var pe "$PE" -var cutin "$CUTIN" -var seed 4321 -var every "$EVERY" \
     -var A "$LMP_A" -var kappa "$LMP_KAPPA" -var ycut "$LMP_YCUT"
-  for variant in lammps default; do
+  variants=(lammps default)
+  if [[ -n "$BEFORE" ]]; then variants+=(before); fi
+  for variant in "${variants[@]}"; do
     extra=()
-    [[ $variant == lammps ]] && extra=("${lammps_forms[@]}")
+    exe="$fldsim"
+    if [[ $variant != default ]]; then extra=("${lammps_forms[@]}"); fi
+    if [[ $variant == before ]]; then exe="$BEFORE/bin/fldsim"; fi
     count_calls "fldsim-$variant.gdb" main \
       'fldsim::BlockPCG::solve(fldsim::BlockSparseMatrix const&, double const*, double*, double, int)' \
       'fldsim::BlockSparseMatrix::multiply(double const*, double*) const' -- \
-      "$fldsim" run "$here/scene.yaml" -o "$outdir/count-$variant.h5" --overwrite \
-      --set system.init.file="$outdir/start.h5" --set run.duration="$("$PY" -c "print($COUNT_STEPS * $DT)")" \
+      "$exe" run "$here/scene.yaml" -o "$outdir/count-$variant.h5" --overwrite \
+      --set system.init.file="$outdir/start.h5" --set system.volume_fraction="$PHI" --set run.duration="$("$PY" -c "print($COUNT_STEPS * $DT)")" \
       "${scene_set[@]}" "${extra[@]}"
   done
 fi
 
 "$PY" "$here/report.py" --scene "$SCENE" --outdir "$outdir" --steps "$STEPS" --warmup "$WARMUP" --every "$EVERY" --repeat "$REPEAT" \
-  --count-steps "$COUNT_STEPS" --dt "$DT" --pe "$PE" --lammps-version "$lmp_version ($lmp_package)" \
+  --count-steps "$COUNT_STEPS" --dt "$DT" --pe "$PE" --phi "$PHI" \
+  ${BEFORE:+--before "${BEFORE_LABEL:-$BEFORE}"} --lammps-version "$lmp_version ($lmp_package)" \
   > "$outdir/lammps.md"
 cat "$outdir/lammps.md"

@@ -213,3 +213,89 @@ TEST(ResistanceModel, AssemblyNoiseAndSolveAreIndependentOfThreadCount) {
   for (std::size_t k = 0; k < one.size(); ++k) EXPECT_EQ(one[k], two[k]) << k;
 }
 #endif
+
+// refactor_threshold: a later assembly of a step reuses the preconditioner built at the step's
+// first assembly while the diagonal of R has moved little. That reuse must (1) really happen for a
+// small move, (2) leave the answer a converged solve of the *current* matrix, (3) not happen for a
+// large move, and (4) never reach into the next step: a run resumed at step s starts with a fresh
+// model, so step s must solve bit-identically whether or not the model assembled anything at
+// step s - 1 (an odd number of assemblies there included).
+TEST(ResistanceModel, FactorIsReusedWithinAStepAndNeverAcrossSteps) {
+  const Config setup = kSetups[0];
+  auto configuration = [&](unsigned seed) {
+    System s(shape_of(setup), setup.n, setup.box, physics(1.0, 1.0, 0.3));
+    random_configuration(s, 0.01, seed);
+    return s;
+  };
+  auto moved = [&](System s, unsigned seed) {  // every body moved by at most 2e-4 a per axis
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(-2e-4, 2e-4);
+    for (Vec3& x : s.positions()) x += Vec3(u(rng), u(rng), u(rng));
+    s.update_nodes();
+    return s;
+  };
+  const System A = configuration(41), A1 = moved(A, 1), B = moved(A1, 2), D = configuration(43);
+  auto model = [&](double threshold) {
+    ModelSettings s = lubrication_settings();
+    s.tolerance = 1e-8;
+    s.refactor_threshold = threshold;
+    auto m = std::make_unique<ResistanceModel>(s);
+    HydroRequest req;
+    m->configure(A, req);
+    return m;
+  };
+  const double range = model(0.0)->pair_range(A);
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<double> F(6 * setup.n);
+  for (double& f : F) f = u(rng);
+  auto assemble_at = [&](ResistanceModel& m, System s, std::int64_t step) {
+    s.set_step(step);
+    m.assemble(s, brute_force_pairs(s, range));
+  };
+  auto solve = [&](ResistanceModel& m, System s, std::int64_t step) {  // from a zero start
+    s.set_step(step);
+    std::vector<double> dU(F.size(), 0.0);
+    m.solve(s, F.data(), dU.data());
+    return dU;
+  };
+  auto own_factor = [&](const System& s) {  // a model that factors this very matrix
+    auto m = model(0.0);
+    assemble_at(*m, s, 1);
+    return std::make_pair(solve(*m, s, 1), std::move(m));
+  };
+
+  // (4) One assembly at step 0 (A), then step 1 (A1, close to A): as a fresh model's first
+  // assembly of step 1, although A's factor would have passed the threshold.
+  auto carried = model(0.25);
+  assemble_at(*carried, A, 0);
+  assemble_at(*carried, A1, 1);
+  const std::vector<double> x_carried = solve(*carried, A1, 1);
+  const auto [x_fresh, fresh] = own_factor(A1);
+  EXPECT_EQ(carried->last_solve().iterations, fresh->last_solve().iterations);
+  for (std::size_t k = 0; k < F.size(); ++k) ASSERT_EQ(x_carried[k], x_fresh[k]) << k;
+
+  // (1), (2) Second assembly of step 1 (B, moved little) reuses A1's factor: converged on B's
+  // matrix, close to a solve with B's own factor but not bit-identical to it.
+  assemble_at(*carried, B, 1);
+  const std::vector<double> x_reused = solve(*carried, B, 1);
+  const auto [x_own, own] = own_factor(B);
+  EXPECT_LE(carried->last_solve().residual, 1e-8);
+  const Eigen::MatrixXd R = own->resistance().dense();
+  const Eigen::Index n6 = Eigen::Index(F.size());
+  const Eigen::Map<const Eigen::VectorXd> xr(x_reused.data(), n6), xo(x_own.data(), n6);
+  const Eigen::VectorXd f = Eigen::Map<const Eigen::VectorXd>(F.data(), n6) +
+                            Eigen::Map<const Eigen::VectorXd>(own->strain_force().data(), n6);
+  EXPECT_LE((R * xr - f).norm(), 1e-8 * f.norm() * (1.0 + 1e-6));  // B's matrix, not A1's
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(R);
+  const double cond = eig.eigenvalues().maxCoeff() / eig.eigenvalues().minCoeff();
+  EXPECT_LE((xr - xo).norm() / xo.norm(), 2.0 * cond * 1e-8);
+  EXPECT_NE((xr - xo).norm(), 0.0) << "the second assembly of the step did not reuse the factor";
+
+  // (3) Third assembly of step 1 (D, another configuration): a new factor, so D is solved exactly
+  // as by a model that factors D.
+  assemble_at(*carried, D, 1);
+  const std::vector<double> x_D = solve(*carried, D, 1);
+  const auto [x_D_own, own_D] = own_factor(D);
+  for (std::size_t k = 0; k < F.size(); ++k) ASSERT_EQ(x_D[k], x_D_own[k]) << k;
+}

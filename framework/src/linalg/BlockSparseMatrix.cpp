@@ -16,7 +16,8 @@ void BlockSparseMatrix::set_pattern(std::size_t n,
   diag_.assign(n, Mat6::Zero());
   // Sort and deduplicate the (i, j) pairs: rows in order, columns ascending within a row.
   linalg::copy_grow_only(sorted_, upper);
-  std::sort(sorted_.begin(), sorted_.end());
+  // Callers usually pass the pairs in order already (a sorted neighbour list): then no sort.
+  if (!std::is_sorted(sorted_.begin(), sorted_.end())) std::sort(sorted_.begin(), sorted_.end());
   sorted_.erase(std::unique(sorted_.begin(), sorted_.end()), sorted_.end());
   const std::size_t nnz = sorted_.size();
 

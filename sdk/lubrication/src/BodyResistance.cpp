@@ -44,6 +44,7 @@ bool BodyResistance::update(const System& system, const NodePairList& pairs) {
     block_ii_.resize(n);
     block_jj_.resize(n);
     block_ij_.resize(n);
+    centred_.resize(n);
     pair_force_.resize(n);
   } else {
     for (std::size_t k = 0; k < accepted_.size(); ++k) {
@@ -57,11 +58,23 @@ bool BodyResistance::update(const System& system, const NodePairList& pairs) {
 #pragma omp parallel for schedule(static)
   for (std::int64_t k = 0; k < std::int64_t(accepted_.size()); ++k) {
     const Accepted& p = accepted_[k];
-    PairRows S;
-    LubricationPair::rows(radii_[p.node_a], radii_[p.node_b], p.separation, mu, options_, S);
+    LubricationCoefficients c;
     const Vec3& xa = offsets[std::size_t(p.body_i) * m + p.node_a];
     const Vec3& xb = offsets[std::size_t(p.body_j) * m + p.node_b];
     BodyRows& B = rows_[k];
+    if (centred_gram_ && xa.isZero(0.0) && xb.isZero(0.0)) {
+      // Both nodes at their bodies' centres (spheres): B = sqrt(w) S (written in place), and the
+      // Gram blocks in closed form (instead of three 6 x 8 x 6 products), evaluated by add_to from
+      // the direction and coefficients kept here: three stored 6 x 6 blocks per pair would cost
+      // more memory traffic than the arithmetic.
+      LubricationPair::rows(radii_[p.node_a], radii_[p.node_b], p.separation, mu, options_, B, c);
+      if (p.weight != 1.0) B *= std::sqrt(p.weight);
+      centred_[k] = {p.separation / p.separation.norm(), c, p.weight, true};
+      continue;
+    }
+    centred_[k].on = false;
+    PairRows S;
+    LubricationPair::rows(radii_[p.node_a], radii_[p.node_b], p.separation, mu, options_, S, c);
     // Fixed-size products as lazy (coefficient) products: Eigen 3.4 otherwise sends these small
     // shapes to its general blocked kernel, which dominated the assembly. A node at its body's
     // centre (every sphere) has identity kinematics.
@@ -97,6 +110,15 @@ void BodyResistance::add_to(BlockSparseMatrix& A) const {
   // Serial, in pair order: every block receives its terms in a fixed order.
   for (std::size_t k = 0; k < accepted_.size(); ++k) {
     const Accepted& p = accepted_[k];
+    const Centred& c = centred_[k];
+    if (c.on) {
+      Mat6 ii, jj, ij;
+      LubricationPair::centred_gram(c.d, c.c, c.weight, ii, jj, ij);
+      A.diagonal(p.body_i) += ii;
+      A.diagonal(p.body_j) += jj;
+      A.upper(p.upper) += ij;
+      continue;
+    }
     A.diagonal(p.body_i) += block_ii_[k];
     A.diagonal(p.body_j) += block_jj_[k];
     A.upper(p.upper) += block_ij_[k];

@@ -102,9 +102,37 @@ LubricationCoefficients LubricationPair::coefficients(double a_i, double a_j, do
 
 void LubricationPair::rows(double a_i, double a_j, const Vec3& r, double mu,
                            const LubricationOptions& options, PairRows& S) {
+  LubricationCoefficients c;
+  rows(a_i, a_j, r, mu, options, S, c);
+}
+
+void LubricationPair::centred_gram(const Vec3& d, const LubricationCoefficients& c, double w, Mat6& ii,
+                                   Mat6& jj, Mat6& ij) {
+  const double sq = w * c.squeeze, sh = w * c.shear, pu = w * c.pump, tw = w * c.twist;
+  const Eigen::Matrix3d dd = d * d.transpose();
+  const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - dd;
+  const Eigen::Matrix3d D = cross_matrix(d);
+  const Eigen::Matrix3d uu = sq * dd + sh * P;
+  const double li = c.lever_i, lj = c.lever_j;
+  ii.topLeftCorner<3, 3>() = uu;
+  ii.topRightCorner<3, 3>() = -(sh * li) * D;
+  ii.bottomLeftCorner<3, 3>() = (sh * li) * D;
+  ii.bottomRightCorner<3, 3>() = (sh * li * li + pu) * P + tw * dd;
+  jj.topLeftCorner<3, 3>() = uu;
+  jj.topRightCorner<3, 3>() = (sh * lj) * D;
+  jj.bottomLeftCorner<3, 3>() = -(sh * lj) * D;
+  jj.bottomRightCorner<3, 3>() = (sh * lj * lj + pu) * P + tw * dd;
+  ij.topLeftCorner<3, 3>() = -uu;
+  ij.topRightCorner<3, 3>() = -(sh * lj) * D;
+  ij.bottomLeftCorner<3, 3>() = -(sh * li) * D;
+  ij.bottomRightCorner<3, 3>() = (sh * li * lj - pu) * P - tw * dd;
+}
+
+void LubricationPair::rows(double a_i, double a_j, const Vec3& r, double mu,
+                           const LubricationOptions& options, PairRows& S, LubricationCoefficients& c) {
   const double dist = r.norm();
   const Vec3 d = r / dist;
-  const LubricationCoefficients c = coefficients(a_i, a_j, dist, mu, options);
+  c = coefficients(a_i, a_j, dist, mu, options);
   const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - d * d.transpose();
   const Eigen::Matrix3d D = cross_matrix(d);  // D w = d x w
 

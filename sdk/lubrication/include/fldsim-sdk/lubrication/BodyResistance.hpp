@@ -48,6 +48,9 @@ class BodyResistance {
   Eigen::Matrix3d stresslet_sum(const Eigen::Matrix3d& E, const double* dU) const;
 
   std::size_t size() const { return accepted_.size(); }
+  // For tests and benchmarks: false evaluates the Gram blocks of centred node pairs by the general
+  // products (the closed form LubricationPair::centred_gram is the default).
+  void set_centred_gram(bool on) { centred_gram_ = on; }
   // For tests: body indices and body-level rows [S_i S_j] (8 x 12) of accepted pair k.
   std::pair<std::uint32_t, std::uint32_t> bodies(std::size_t k) const {
     return {accepted_[k].body_i, accepted_[k].body_j};
@@ -77,8 +80,17 @@ class BodyResistance {
   std::vector<Accepted> accepted_, candidates_;
   std::vector<BodyRows> rows_;
   std::vector<Mat6> block_ii_, block_jj_, block_ij_;
+  // Pairs of centred nodes: their Gram blocks come from LubricationPair::centred_gram in add_to.
+  struct Centred {
+    Vec3 d = Vec3::Zero();  // unit separation
+    LubricationCoefficients c;
+    double weight = 1.0;
+    bool on = false;
+  };
+  std::vector<Centred> centred_;
   std::vector<Eigen::Matrix<double, 12, 1>> pair_force_;  // scratch: per-pair body wrenches
   std::vector<double> radii_;
+  bool centred_gram_ = true;
 };
 
 }  // namespace fldsim::hydro

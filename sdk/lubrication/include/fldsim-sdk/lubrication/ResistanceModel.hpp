@@ -33,6 +33,11 @@ struct ModelSettings {
   double tolerance = 1e-6;
   int max_iterations = 1000;
   Preconditioner preconditioner = Preconditioner::IncompleteCholesky;
+  // A later assembly of the same step (the midpoint stage's) reuses the preconditioner built at
+  // the step's first assembly while the diagonal blocks of R have moved by at most this much
+  // since, relative (Frobenius norm over all bodies); 0 rebuilds it at every assembly. A factor is
+  // never carried into the next step, so a resumed run solves bit-identically.
+  double refactor_threshold = 0.25;
 };
 
 // Declare and read the parameters common to lubrication and fld. `conventions: lammps` presets
@@ -76,6 +81,10 @@ class ResistanceModel : public HydroModel {
   std::vector<double> strain_force_, rhs_;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> body_pairs_;  // pattern scratch
   SolveStats stats_;
+  // The step of the current preconditioner and the diagonal blocks it was built from.
+  std::int64_t factor_step_ = -1;
+  std::vector<Mat6> factor_diagonal_;
+  bool reuse_factor(std::int64_t step) const;
   bool configured_ = false;
 };
 
