@@ -131,8 +131,8 @@ void StressObserver::finish(const RunInfo&, ResultSink& out) {
     // With lubrication the pairs stay out of the repulsion's range and the contact pressure is
     // carried by the Brownian stress instead (Brady, J. Chem. Phys. 98, 3335 (1993)): the whole
     // particle pressure is then the one to compare with the equation of state (FLD spheres, phi 0.3,
-    // Pe 0, 8 runs: Z_particle 3.954 +- 0.028 at dt 1.25e-4 and 3.872 +- 0.013 at 2.5e-4 against the
-    // hard core's 3.975 +- 0.022; Z above: 1.03).
+    // Pe 0, four sets of 8 runs at dt 1.25e-4 and 2.5e-4: Z_particle 3.87-3.95 against the hard
+    // core's 3.975 +- 0.022, about 2 % low; Z above: 1.03; docs/equilibrium-oracle.md).
     if (provided[kBrownian])
       write_blocked(
           out, r + "Z_particle", series_[kParticleTotal][3], "1",
