@@ -81,7 +81,7 @@ void BM_RepulsionForces(benchmark::State& state) {
 
 // ResistanceModel::assemble through the fld plugin: pair selection and rows, R_0, R_delta into
 // the block-sparse matrix, R_FE:E_inf, the preconditioner's factorisation. Each call is the first
-// assembly of a new step (refactor_every counts assemblies within a step), so each factors.
+// assembly of a new step (the factor is never carried across steps), so each factors.
 void BM_LubricationAssemble(benchmark::State& state) {
   BenchScene& s = scene(int(state.range(0)));
   const std::int64_t step = s.system().step();
@@ -95,7 +95,8 @@ void BM_LubricationAssemble(benchmark::State& state) {
 }
 
 // The same without the factorisation: the second assembly of a step (the midpoint stage's, which
-// reuses the step's factor with the default refactor_every 2). Time / lub_pairs = the assembly
+// reuses the step's factor: the configuration is the same, so refactor_threshold never trips).
+// Time / lub_pairs = the assembly
 // cost per lubricated pair block.
 void BM_LubricationAssembleNoFactor(benchmark::State& state) {
   BenchScene& s = scene(int(state.range(0)));
@@ -206,7 +207,7 @@ void BM_MidpointDriftStage(benchmark::State& state) {
   for (auto _ : state) {
     // As in a step, the midpoint solve starts from the base solve's dU (not from its own last
     // answer), and its assembly is the step's second (the preconditioner built at the step's
-    // base assembly is reused with the default refactor_every 2).
+    // base assembly is reused under the default refactor_threshold).
     state.PauseTiming();
     s.evaluator().warm_start() = first_dU;
     base.restore(sys);

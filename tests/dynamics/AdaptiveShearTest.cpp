@@ -33,6 +33,7 @@
 #include <vector>
 
 #include "io/Summary.hpp"
+#include "oracle/BlockStatistics.hpp"
 #include "oracle/GrComparison.hpp"
 
 namespace {
@@ -87,12 +88,8 @@ std::map<std::string, MeanError> run_replicas(const std::string& name, const std
   }
   std::map<std::string, MeanError> result;
   for (const auto& q : kQuantities) {
-    const auto& v = values[q];
-    EXPECT_EQ(int(v.size()), kRuns) << q;
-    double mean = 0.0, var = 0.0;
-    for (double x : v) mean += x / double(v.size());
-    for (double x : v) var += (x - mean) * (x - mean) / double(v.size() - 1);
-    result[q] = MeanError{mean, std::sqrt(var / double(v.size())), int(v.size())};
+    EXPECT_EQ(int(values[q].size()), kRuns) << q;
+    result[q] = fldsim::oracle::block_mean(values[q]);  // one run, one block: sd / sqrt(runs)
   }
   fs::remove_all(dir);
   return result;

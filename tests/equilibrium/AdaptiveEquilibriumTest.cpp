@@ -85,13 +85,9 @@ EquilibriumScene free_draining_spheres() {
   return s;
 }
 
+// Free draining reaches the repulsion's overlaps: the full potential, no hard core.
 oracle::OracleResult oracle_of(const EquilibriumScene& scene) {
-  oracle::OracleOptions o;
-  o.bin_width = 0.01;
-  o.sweeps = 20000;
-  o.blocks = 40;
-  o.node_distribution = false;
-  return run_scene_oracle(scene, o);
+  return run_scene_oracle(scene, comparison_oracle_options(false));
 }
 
 const oracle::OracleResult& sphere_oracle() {

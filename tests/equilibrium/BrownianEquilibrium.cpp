@@ -35,6 +35,16 @@ double box_edge(const Shape& shape, std::size_t n, double phi) {
 
 }  // namespace
 
+oracle::OracleOptions comparison_oracle_options(bool hard_core) {
+  oracle::OracleOptions o;
+  o.bin_width = 0.01;
+  o.sweeps = 20000;
+  o.blocks = 40;
+  o.node_distribution = false;
+  o.hard_core = hard_core;
+  return o;
+}
+
 oracle::OracleResult run_scene_oracle(const EquilibriumScene& scene, const oracle::OracleOptions& opt) {
   auto shape = make<Shape>("shape", scene.shape, scene.shape_params);
   System s(shape, scene.count, box_edge(*shape, scene.count, scene.phi), brownian_physics(scene.phi));

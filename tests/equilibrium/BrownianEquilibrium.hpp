@@ -68,6 +68,10 @@ BrownianEquilibrium run_brownian(const EquilibriumScene& scene, const BrownianOp
 // smallest). With stress_every > 0 each run's stress-observer Z is one block (Z_observer_blocks):
 // Z_observer and Z_observer_se are the mean and SE of those run means (sd / sqrt(runs)).
 BrownianEquilibrium run_brownian_replicas(const EquilibriumScene& scene, BrownianOptions opt, int runs);
+// The oracle settings the Brownian comparisons use: 0.01 a bins, 20000 sweeps in 40 blocks, body
+// g(r) only; `hard_core` for lubricated dynamics (docs/equilibrium-oracle.md, "FLD near contact").
+oracle::OracleOptions comparison_oracle_options(bool hard_core);
+
 oracle::OracleResult run_scene_oracle(const EquilibriumScene& scene, const oracle::OracleOptions& opt);
 
 }  // namespace fldsim::testing

@@ -88,13 +88,8 @@ EquilibriumScene spheres() {
 }
 
 oracle::OracleResult oracle_of(const EquilibriumScene& scene) {
-  oracle::OracleOptions o;
-  o.bin_width = 0.01;
-  o.sweeps = 20000;
-  o.blocks = 40;
-  o.node_distribution = false;
-  o.hard_core = true;  // FLD's steps do not reach the repulsion's overlaps (see above)
-  return run_scene_oracle(scene, o);
+  // FLD's steps do not reach the repulsion's overlaps (see above): the hard core.
+  return run_scene_oracle(scene, comparison_oracle_options(true));
 }
 
 const oracle::OracleResult& sphere_oracle() {

@@ -32,6 +32,8 @@ void keep_aside(const std::string& path, const std::string& suffix) {
   if (ec) throw Error(path + ": cannot move it aside to " + target + ": " + ec.message());
 }
 
+}  // namespace
+
 std::string last_line_of(const std::string& path) {
   std::ifstream in(path);
   std::string line, last;
@@ -39,8 +41,6 @@ std::string last_line_of(const std::string& path) {
     if (!line.empty()) last = line;
   return last;
 }
-
-}  // namespace
 
 double sweep_clock() {
   using namespace std::chrono;

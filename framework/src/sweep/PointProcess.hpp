@@ -48,6 +48,9 @@ class PointProcess {
   PointResult result_;
 };
 
+// The last non-empty line of a text file ("" if it cannot be read): a run's reason, when it failed.
+std::string last_line_of(const std::string& path);
+
 // Wall-clock seconds (steady clock).
 double sweep_clock();
 

@@ -14,6 +14,8 @@
 #include <ostream>
 #include <sstream>
 
+#include "sweep/PointProcess.hpp"
+
 extern char** environ;
 
 namespace fldsim {
@@ -49,14 +51,6 @@ std::string read_text(const std::string& path) {
   std::stringstream ss;
   ss << in.rdbuf();
   return ss.str();
-}
-
-std::string last_line(const std::string& text) {
-  std::istringstream in(text);
-  std::string line, last;
-  while (std::getline(in, line))
-    if (!line.empty()) last = line;
-  return last;
 }
 
 }  // namespace
@@ -114,7 +108,8 @@ std::size_t time_points(const SweepPlan& plan, std::vector<PointState>& points, 
       ++timed;
       log << " " << ms << " ms/frame\n";
     } else {
-      log << " failed (exit " << code << ": " << last_line(text) << "); the cost model's estimate is kept\n";
+      log << " failed (exit " << code << ": " << last_line_of(probe_log.string())
+          << "); the cost model's estimate is kept\n";
     }
     for (const auto& f : {out, fs::path(out.string() + ".checkpoint"), fs::path(out.string() + ".part")})
       fs::remove(f, ec);
