@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "dynamics/BrownianStressProbe.hpp"
 #include "dynamics/Scene.hpp"
 #include "geometry/HardBodyMonteCarlo.hpp"
 #include "observers/FakeSink.hpp"
@@ -87,6 +88,16 @@ BrownianEquilibrium run_brownian(const EquilibriumScene& scene, const BrownianOp
   guard.max_overlap = opt.max_overlap;
   StepLoop loop(s, integrator, *sc.evaluator, sc.list, observers, info, true,
                 opt.drift == DriftScheme::Midpoint, control, guard);
+  std::unique_ptr<BrownianStressProbe> probe;
+  if (opt.stress_every > 0 && opt.probe_brownian_stress) {
+    // As Simulation makes it: the model's own copy with its solves at 1e-10.
+    YAML::Node probe_params = YAML::Load(scene.hydro_params);
+    if (registry().find("hydro", scene.hydro).schema.find("tolerance")) probe_params["tolerance"] = 1e-10;
+    probe = std::make_unique<BrownianStressProbe>(
+        make<HydroModel>("hydro", scene.hydro, YAML::Dump(probe_params)), s, sc.hydro->pair_range(s), 0.3,
+        1e-6, opt.seed);
+    loop.use_brownian_stress_probe(probe.get());
+  }
 
   BrownianEquilibrium out;
   out.g = oracle::RadialHistogram(oracle::PairPoints::BodyCentres, opt.bin_width, opt.r_max);
@@ -113,6 +124,11 @@ BrownianEquilibrium run_brownian(const EquilibriumScene& scene, const BrownianOp
     const auto& z = sink.scalar("results/stress/Z");
     out.Z_observer = z.value;
     out.Z_observer_se = z.stderr_value;
+    if (sink.scalars.count("results/stress/Z_particle")) {
+      const auto& zp = sink.scalar("results/stress/Z_particle");
+      out.Z_particle = zp.value;
+      out.Z_particle_se = zp.stderr_value;
+    }
   }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return out;
@@ -130,6 +146,7 @@ BrownianEquilibrium run_brownian_replicas(const EquilibriumScene& scene, Brownia
     out.g.append_blocks(r.g);
     out.Z_blocks.push_back(r.Z.mean);
     if (opt.stress_every > 0) out.Z_observer_blocks.push_back(r.Z_observer);
+    if (opt.stress_every > 0) out.Z_particle_blocks.push_back(r.Z_particle);
     out.steps += r.steps;
     out.accepted += r.accepted;
     out.rejected += r.rejected;
@@ -141,6 +158,9 @@ BrownianEquilibrium run_brownian_replicas(const EquilibriumScene& scene, Brownia
     const oracle::MeanError z = oracle::block_mean(out.Z_observer_blocks);
     out.Z_observer = z.mean;
     out.Z_observer_se = z.se;
+    const oracle::MeanError zp = oracle::block_mean(out.Z_particle_blocks);
+    out.Z_particle = zp.mean;
+    out.Z_particle_se = zp.se;
   }
   return out;
 }

@@ -7,7 +7,9 @@
 //               comparison, 0.05 a for the contact shell), and the molecular-virial Z of each
 //               sampled configuration (oracle::PairVirial, as the oracle measures it)
 //   pressure    the stress observer's interparticle Pi -> Z_observer = 1 + Pi/(n kT), its own
-//               Flyvbjerg-Petersen SE
+//               Flyvbjerg-Petersen SE; and its Z_particle = 1 + Pi/(n kT) with every part
+//               (Brownian stress from the random-difference probe, as run.brownian_stress's
+//               default, or from the midpoint stage)
 #pragma once
 
 #include <cstdint>
@@ -36,7 +38,8 @@ struct BrownianOptions {
   int blocks = 20;
   std::uint64_t seed = 1;  // start and noise
   double bin_width = 0.01, r_max = 3.0;
-  std::int64_t stress_every = 0;  // steps between stress-observer samples; 0 = no observer
+  std::int64_t stress_every = 0;      // steps between stress-observer samples; 0 = no observer
+  bool probe_brownian_stress = true;  // BrownianStressProbe; false = the midpoint estimate
   // Step control (docs/time_steps.md): with `adaptive`, dt is dt_max (the frame; sample_every
   // and stress_every count frames) and steps follow the error estimate.
   bool adaptive = false;
@@ -54,6 +57,8 @@ struct BrownianEquilibrium {
   oracle::MeanError Z;
   double Z_observer = 0.0, Z_observer_se = 0.0;  // from the stress observer (if stress_every > 0)
   std::vector<double> Z_observer_blocks;         // replicas: each run's observer Z (one block each)
+  double Z_particle = 0.0, Z_particle_se = 0.0;  // observer Z with every part (if it wrote one)
+  std::vector<double> Z_particle_blocks;         // replicas: each run's Z_particle
   std::int64_t steps = 0;                        // frames (= steps at a fixed dt)
   std::int64_t accepted = 0;                     // time steps taken
   std::int64_t rejected = 0;  // step attempts the loop rejected (0 for an undisturbed fixed-step run)

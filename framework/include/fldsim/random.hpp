@@ -12,12 +12,13 @@ namespace fldsim {
 
 // What the numbers are for; part of the key so different uses never share a stream.
 enum class RandomPurpose : std::uint32_t {
-  BodyNoise = 1,   // alpha: body-level Brownian noise (R_0 part)
-  PairNoise = 2,   // beta: node-pair Brownian noise (R_delta part)
-  MonteCarlo = 3,  // initial configuration moves
-  DriftProbe = 4,  // random finite-difference probes for the thermal drift
-  Initial = 5,     // random initial orientations etc.
-  User = 100,      // first value free for plugins
+  BodyNoise = 1,    // alpha: body-level Brownian noise (R_0 part)
+  PairNoise = 2,    // beta: node-pair Brownian noise (R_delta part)
+  MonteCarlo = 3,   // initial configuration moves
+  DriftProbe = 4,   // random finite-difference probes for the thermal drift
+  Initial = 5,      // random initial orientations etc.
+  StressProbe = 6,  // random finite-difference probes of the Brownian stress
+  User = 100,       // first value free for plugins
 };
 
 class Philox4x32 {

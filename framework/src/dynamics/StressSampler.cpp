@@ -11,7 +11,7 @@ void StressSampler::sample(StressStage stage, const System& s, VelocityEvaluator
   HydroModel& hydro = ev.hydro();
   step_solve_ = ev.stats();
   if (stage == StressStage::Final) {
-    if (midpoint_)
+    if (midpoint_ && !probe_)
       pieces_.brownian = hydro.stresslet_sum(s, ev.pairs(), ev.relative_velocity()) - start_total_;
     return;
   }
@@ -27,6 +27,7 @@ void StressSampler::sample(StressStage stage, const System& s, VelocityEvaluator
   ev.solve(s, false);
   pieces_.hydrodynamic = hydro.stresslet_sum(s, ev.pairs(), ev.relative_velocity());
   std::copy(dU_step_.begin(), dU_step_.end(), ev.warm_start().begin());
+  if (probe_) pieces_.brownian = probe_->measure(s);
 }
 
 }  // namespace fldsim

@@ -13,10 +13,13 @@
 // of the deterministic part: the variance drops from O(1/dt) to O(1). Without a midpoint stage
 // (drift: none) there is no Brownian estimate. The extra solve restores the solver's warm start,
 // so a run is bit-identical with or without a stress observer.
+// With a BrownianStressProbe (run.brownian_stress: random_difference, the default) the Brownian
+// piece is the probe's step-independent estimate at x instead, in any integrator.
 #pragma once
 
 #include <vector>
 
+#include "dynamics/BrownianStressProbe.hpp"
 #include "dynamics/TimeIntegrator.hpp"
 #include "fldsim/observer.hpp"
 
@@ -30,12 +33,16 @@ class StressSampler {
   // The integrator's stage hook: Start right after the solve at x, Final after the midpoint solve.
   void sample(StressStage stage, const System& s, VelocityEvaluator& ev);
 
+  // Take the Brownian piece from the probe (not owned; null = the midpoint difference).
+  void use_probe(BrownianStressProbe* probe) { probe_ = probe; }
+
   const StressPieces& pieces() const { return pieces_; }
   // The step's last own solve (the extra deterministic solve is not counted).
   const SolveStats& step_solve() const { return step_solve_; }
 
  private:
   bool brownian_, midpoint_;
+  BrownianStressProbe* probe_ = nullptr;
   StressPieces pieces_;
   SolveStats step_solve_;
   Eigen::Matrix3d start_total_ = Eigen::Matrix3d::Zero();

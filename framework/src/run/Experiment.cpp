@@ -106,6 +106,22 @@ ParamSchema run_schema() {
   s.choice(
       "drift", "midpoint", {"midpoint", "none"},
       "thermal drift kT div M: midpoint step with frozen noise, or none (wrong equilibrium; for comparison)");
+  s.choice("brownian_stress", "random_difference", {"random_difference", "midpoint"},
+           "estimate of the Brownian stress kT div(R_SU R_FU^-1) on the steps a stress observer samples: "
+           "random_difference = two extra solves at x +- (delta/2) W, W normal (independent of dt; any "
+           "integrator), midpoint = the change of the stresslets over the midpoint stage (no extra "
+           "solves; biased by O(dt), about -2 % in the contact pressure at dt 2.5e-4: "
+           "docs/equilibrium-oracle.md)");
+  s.number("brownian_stress_delta", 1e-6, "a",
+           "with brownian_stress: random_difference, the probe's displacement scale delta (bias O(delta^2 / "
+           "gap^2) for pairs at that gap; the solve error adds tolerance / delta to each sample's noise)")
+      .greater(0.0)
+      .at_most(0.01);
+  s.number("brownian_stress_tolerance", 1e-10, "",
+           "with brownian_stress: random_difference, the relative residual of the probe's solves (sets the "
+           "hydro model's `tolerance` for its own copy of the model)")
+      .greater(0.0)
+      .less(1e-3);
   s.number("skin", 0.3, "a",
            "neighbour-list skin: the list is rebuilt when the two largest node displacements (less the "
            "affine shear), plus the strain times the pair range, exceed it")
@@ -447,6 +463,9 @@ Experiment parse_experiment(YAML::Node root, const std::string& file,
     ex.seed = rp.integer("seed");
     ex.integrator = rp.text("integrator");
     ex.drift = rp.text("drift");
+    ex.brownian_stress = rp.text("brownian_stress");
+    ex.brownian_stress_delta = rp.number("brownian_stress_delta");
+    ex.brownian_stress_tolerance = rp.number("brownian_stress_tolerance");
     ex.skin = rp.number("skin");
     ex.checkpoint_every = rp.number("checkpoint_every");
     ex.threads = rp.integer("threads");

@@ -56,8 +56,11 @@ struct Experiment {
   int refine = 0;         // every frame in at least 2^refine steps
   std::string time_unit;  // paper | diffusive | strain
   std::int64_t seed = 42;
-  std::string integrator;  // auto | euler_maruyama | rk3
-  std::string drift;       // midpoint | none
+  std::string integrator;                             // auto | euler_maruyama | rk3
+  std::string drift;                                  // midpoint | none
+  std::string brownian_stress = "random_difference";  // random_difference | midpoint
+  double brownian_stress_delta = 1e-6;                // a
+  double brownian_stress_tolerance = 1e-10;           // the probe's solve tolerance
   double skin = 0.3;
   double checkpoint_every = 0.0;  // in time_unit; 0 = only at the end
   std::int64_t threads = 0;

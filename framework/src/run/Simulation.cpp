@@ -70,6 +70,17 @@ SimulationParts build_parts(const Experiment& ex, const PluginRegistry& registry
     parts.observer_keys.push_back("observers[" + std::to_string(i) + "]." + o.plugin.name);
   }
   check_observer_needs(ex, *parts.hydro, parts.observers);
+  bool need_stress = false;
+  for (const auto& o : parts.observers) need_stress = need_stress || o->needs().stress;
+  if (need_stress && ex.brownian && ex.brownian_stress == "random_difference" &&
+      parts.hydro->provides_stresslets()) {
+    // The probe's own copy of the model: same parameters, its solve tolerance (if the model has one).
+    Params probe_params = ex.hydro.params;
+    if (probe_params.has("tolerance"))
+      probe_params.set("tolerance", ParamValue(ex.brownian_stress_tolerance),
+                       ParamOrigin{"run.brownian_stress_tolerance", "run.brownian_stress_tolerance"}, false);
+    parts.probe_hydro = registry.create<HydroModel>("hydro", ex.hydro.name, probe_params);
+  }
 
   if (resume) {
     if (resume->experiment_yaml != ex.resolved_yaml)
@@ -88,6 +99,7 @@ SimulationSettings settings_of(const Experiment& ex, const UserTimeUnit& unit, T
   s.total_steps = std::int64_t(std::llround(ex.duration / ex.dt));
   s.integrator = ex.integrator;
   s.drift = ex.drift;
+  s.probe_delta = ex.brownian_stress_delta;
   s.skin = ex.skin;
   s.seed = std::uint64_t(ex.seed);
   s.time_unit = unit.name;
@@ -171,7 +183,7 @@ Simulation::Simulation(SimulationParts parts, SimulationSettings settings, Resul
   brownian_ = request.brownian;
   skipped_ = parts_.hydro->configure(sys, request);
   if (!need_stress) skipped_.push_back("no interparticle virial (no stress observer)");
-  if (need_stress && request.brownian && settings_.drift != "midpoint")
+  if (need_stress && request.brownian && !parts_.probe_hydro && settings_.drift != "midpoint")
     skipped_.push_back("no Brownian stress (it needs the midpoint stage: run.drift: midpoint)");
 
   const bool use_rk3 = settings_.integrator == "rk3" || (settings_.integrator == "auto" && !brownian_);
@@ -215,6 +227,13 @@ Simulation::Simulation(SimulationParts parts, SimulationSettings settings, Resul
   steps_ = std::make_unique<StepLoop>(sys, *integrator_, *evaluator_, list_, parts_.observers, info_,
                                       brownian_, !use_rk3 && settings_.drift == "midpoint", settings_.control,
                                       settings_.guard, &log_);
+  if (parts_.probe_hydro) {
+    probe_ = std::make_unique<BrownianStressProbe>(parts_.probe_hydro, sys, range_, settings_.skin,
+                                                   settings_.probe_delta, settings_.seed);
+    steps_->use_brownian_stress_probe(probe_.get());
+    log_ << "Brownian stress: random finite difference, delta " << settings_.probe_delta
+         << " a (two extra solves on each stress sample)\n";
+  }
 }
 
 // capture() and apply() are the one place that lists the run state a restart needs: the

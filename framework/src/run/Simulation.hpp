@@ -36,6 +36,9 @@ struct SimulationParts {
   std::unique_ptr<System> system;  // bodies placed, nodes updated
   std::string hydro_name;          // for the log
   std::shared_ptr<HydroModel> hydro;
+  // A second instance of the hydro model for the Brownian stress probe (run.brownian_stress:
+  // random_difference), with the probe's solve tolerance; null when the run needs none.
+  std::shared_ptr<HydroModel> probe_hydro;
   std::vector<std::shared_ptr<ForceLaw>> forces;
   std::vector<std::shared_ptr<Observer>> observers;  // schedules set
   // Key of each observer's state in a checkpoint, "observers[2].stress" (position and plugin).
@@ -56,6 +59,7 @@ struct SimulationSettings {
   std::string integrator = "auto";   // auto (Euler-Maruyama if Brownian, else RK3) | euler_maruyama | rk3
   std::string drift = "midpoint";    // midpoint | none
   double skin = 0.3;                 // neighbour-list skin, a
+  double probe_delta = 1e-6;         // run.brownian_stress_delta (a), with parts.probe_hydro
   std::uint64_t seed = 42;           // Brownian noise
   std::string time_unit = "a^2/D0";  // the user's time unit (RunInfo)
   double time_scale = 1.0;           // internal time per user time unit
@@ -66,7 +70,7 @@ struct SimulationSettings {
   // and the stability guard. The constructor sets control.frame = dt and control.order.
   StepControlSettings control;
   StepGuard guard;
-  ThreadPlan threads;           // already applied (omp_set_num_threads) by the caller
+  ThreadPlan threads;  // already applied (omp_set_num_threads) by the caller
 };
 
 class Simulation {
@@ -97,8 +101,8 @@ class Simulation {
   // (once; later calls do nothing).
   void finish();
 
-  // Everything a bit-exact restart needs, and its inverse (with the step control's state). apply() may be called at any time
-  // after construction (the neighbour list follows the new positions).
+  // Everything a bit-exact restart needs, and its inverse (with the step control's state). apply() may be
+  // called at any time after construction (the neighbour list follows the new positions).
   Checkpoint capture() const;
   void apply(const Checkpoint& c, const std::string& source = "the checkpoint");
 
@@ -137,6 +141,7 @@ class Simulation {
   std::unique_ptr<TimeIntegrator> integrator_;
   std::unique_ptr<VelocityEvaluator> evaluator_;
   RunInfo info_;
+  std::unique_ptr<BrownianStressProbe> probe_;  // before steps_, which points to it
   std::unique_ptr<StepLoop> steps_;
   std::optional<ThreadTrial> trial_;
   std::int64_t first_step_ = 0, first_iterations_ = 0, first_rebuilds_ = 0;

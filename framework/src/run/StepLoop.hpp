@@ -63,6 +63,9 @@ class StepLoop {
   StepLoop(const StepLoop&) = delete;
   StepLoop& operator=(const StepLoop&) = delete;
 
+  // The Brownian stress from this probe instead of the midpoint difference (not owned).
+  void use_brownian_stress_probe(BrownianStressProbe* probe) { stress_.use_probe(probe); }
+
   // Advance one frame of info.dt; due observers sample into sink.
   void step(ResultSink& sink);
   // The last accepted step's own solve (on stress steps of a Brownian run, not the extra solve).
