@@ -90,12 +90,13 @@ BrownianEquilibrium run_brownian(const EquilibriumScene& scene, const BrownianOp
                 opt.drift == DriftScheme::Midpoint, control, guard);
   std::unique_ptr<BrownianStressProbe> probe;
   if (opt.stress_every > 0 && opt.probe_brownian_stress) {
-    // As Simulation makes it: the model's own copy with its solves at 1e-10.
+    // As Simulation makes it: the model's own copy with the probe's solve tolerance.
     YAML::Node probe_params = YAML::Load(scene.hydro_params);
-    if (registry().find("hydro", scene.hydro).schema.find("tolerance")) probe_params["tolerance"] = 1e-10;
+    if (registry().find("hydro", scene.hydro).schema.find("tolerance"))
+      probe_params["tolerance"] = BrownianStressProbe::kDefaultTolerance;
     probe = std::make_unique<BrownianStressProbe>(
         make<HydroModel>("hydro", scene.hydro, YAML::Dump(probe_params)), s, sc.hydro->pair_range(s), 0.3,
-        1e-6, opt.seed);
+        BrownianStressProbe::kDefaultDelta, opt.seed);
     loop.use_brownian_stress_probe(probe.get());
   }
 

@@ -9,7 +9,11 @@
 // like 1/ln(gap) down to the lubrication floor delta_num, and a step moves a pair at gap h by about
 // sqrt(8 h dt), comparable to h itself for h ~ 1e-3 a at dt ~ 1e-4 a^2/D0: the midpoint estimate's
 // O(dt) bias then decays only slowly with dt (docs/equilibrium-oracle.md measures it). The probe
-// moves pairs by ~delta = 1e-6 a, far below the gaps the dynamics visit.
+// moves pairs by ~delta, whose default 1e-4 a is chosen by measurement: FLD spheres' pressure is
+// the same with 1e-6, 1e-5 and 1e-4 to 0.002 (the pairs at gaps below delta carry little of it),
+// while a mobility with jumps (the paper's sharp visibility rule of dicolloids) gives the estimate
+// a surface term sampled with probability ~ delta and size ~ 1/delta: at 1e-6 single samples of
+// 28 standard deviations and a run-to-run scatter 4x that of 1e-4.
 // It works on its own copy of the system, neighbour list and hydro model, so the run's trajectory,
 // warm start and preconditioner are untouched (a run is bit-identical with or without it). Its
 // solves need a tight tolerance: a solve error e adds e |S| / delta to one sample.
@@ -27,6 +31,9 @@ namespace fldsim {
 
 class BrownianStressProbe {
  public:
+  static constexpr double kDefaultDelta = 1e-4;      // a (run.brownian_stress_delta)
+  static constexpr double kDefaultTolerance = 1e-8;  // relative residual (run.brownian_stress_tolerance)
+
   // hydro: an instance of the run's hydro model of its own (configured here for stresslets
   // only); range and skin as the run's neighbour list; delta in a; seed: the run's seed.
   BrownianStressProbe(std::shared_ptr<HydroModel> hydro, const System& s, double range, double skin,

@@ -8,7 +8,8 @@
 //                g(r) of body centres and of nodes (RadialHistogram), and the pressure by the
 //                molecular virial Z = 1 + tr(W_b)/(3 N kT), W_b = sum (X_j - X_i) (x) f_j (PairVirial)
 //   contact      node-node g(2a+): quadratic least-squares fit to the node g of the bins in
-//                [2a, 2a + 0.1a), per block, evaluated at 2a (all nodes of radius a only)
+//                [2a, 2a + 0.1a), per block, evaluated at 2a (all nodes of radius a only); with
+//                the hard core also its contact pressure (HardCoreContact, molecular form)
 // Why the virial and not a volume perturbation: the pair forces are continuous (the repulsion's
 // energy is C1, its force is capped, not singular), so the virial is exact, needs no finite volume
 // step (whose bias is O(dV) and whose variance grows with the stiffness of the overlap region), and
@@ -52,10 +53,16 @@ struct OracleResult {
   RadialHistogram nodes{PairPoints::Nodes, 0.02, 3.0};
   std::vector<double> Z_blocks, Z_node_blocks;  // per block: molecular (body) and node-node virial
   MeanError Z, Z_node;
-  double Z_block_ratio = 0.0;     // SE with B/2 blocks over SE with B blocks (plateau check)
-  MeanError contact;              // node-node g(2a+); blocks = 0 when not defined
-  double contact_distance = 0.0;  // 2a
-  double energy_per_body = 0.0;   // <U>/(N kT)
+  double Z_block_ratio = 0.0;  // SE with B/2 blocks over SE with B blocks (plateau check)
+  MeanError contact;           // node-node g(2a+); blocks = 0 when not defined
+  // With hard_core (nodes of one radius): the hard core's contact term f(0+)/(3N) extrapolated from
+  // outside the laws' range (HardCoreContact.hpp), times exp(-U(0)/kT) with U(0) the laws' node-pair
+  // energy at contact, and Z_hard_core = Z + Z_contact per block: the restricted system's pressure.
+  std::vector<double> Z_contact_blocks;
+  MeanError Z_contact, Z_hard_core;
+  double boltzmann_at_contact = 1.0;  // exp(-U(0)/kT)
+  double contact_distance = 0.0;      // 2a
+  double energy_per_body = 0.0;       // <U>/(N kT)
   double acceptance_translation = 0.0, acceptance_rotation = 0.0;
   double translation_step = 0.0, rotation_step = 0.0;
   std::int64_t samples = 0, sweeps = 0;

@@ -203,7 +203,15 @@ int oracle_command(const std::vector<std::string>& args, std::ostream& out, std:
       "Z (node-node virial)  %.4f +- %.4f  (leaves out the intra-body constraint virial)\n",
       r.Z.mean, r.Z.se, r.Z_node.mean, r.Z_node.se);
   out << line;
-  if (opt.hard_core) out << "(hard core: Z is the virial of the force laws only, without the contact term)\n";
+  if (opt.hard_core) {
+    out << "(hard core: Z is the virial of the force laws only, without the contact term)\n";
+    std::snprintf(
+        line, sizeof line,
+        "Z contact term        %.4f +- %.4f  (hard core, molecular form, x exp(-U(0)/kT) = %.4f)\n"
+        "Z hard core           %.4f +- %.4f  (Z + contact term: the restricted system's pressure)\n",
+        r.Z_contact.mean, r.Z_contact.se, r.boltzmann_at_contact, r.Z_hard_core.mean, r.Z_hard_core.se);
+    out << line;
+  }
   if (r.contact.blocks > 0) {
     std::snprintf(
         line, sizeof line, "g(%.3g a+) nodes      %.4f +- %.4f  (quadratic fit over [%.3g, %.3g) a)\n",

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "config/YamlValidation.hpp"
+#include "dynamics/BrownianStressProbe.hpp"
 
 namespace fldsim {
 namespace {
@@ -112,12 +113,12 @@ ParamSchema run_schema() {
            "integrator), midpoint = the change of the stresslets over the midpoint stage (no extra "
            "solves; biased by O(dt), about -2 % in the contact pressure at dt 2.5e-4: "
            "docs/equilibrium-oracle.md)");
-  s.number("brownian_stress_delta", 1e-6, "a",
+  s.number("brownian_stress_delta", BrownianStressProbe::kDefaultDelta, "a",
            "with brownian_stress: random_difference, the probe's displacement scale delta (bias O(delta^2 / "
            "gap^2) for pairs at that gap; the solve error adds tolerance / delta to each sample's noise)")
       .greater(0.0)
       .at_most(0.01);
-  s.number("brownian_stress_tolerance", 1e-10, "",
+  s.number("brownian_stress_tolerance", BrownianStressProbe::kDefaultTolerance, "",
            "with brownian_stress: random_difference, the relative residual of the probe's solves (sets the "
            "hydro model's `tolerance` for its own copy of the model)")
       .greater(0.0)

@@ -59,8 +59,8 @@ struct Experiment {
   std::string integrator;                             // auto | euler_maruyama | rk3
   std::string drift;                                  // midpoint | none
   std::string brownian_stress = "random_difference";  // random_difference | midpoint
-  double brownian_stress_delta = 1e-6;                // a
-  double brownian_stress_tolerance = 1e-10;           // the probe's solve tolerance
+  double brownian_stress_delta = 1e-4;                // a
+  double brownian_stress_tolerance = 1e-8;            // the probe's solve tolerance
   double skin = 0.3;
   double checkpoint_every = 0.0;  // in time_unit; 0 = only at the end
   std::int64_t threads = 0;

@@ -59,7 +59,7 @@ struct SimulationSettings {
   std::string integrator = "auto";   // auto (Euler-Maruyama if Brownian, else RK3) | euler_maruyama | rk3
   std::string drift = "midpoint";    // midpoint | none
   double skin = 0.3;                 // neighbour-list skin, a
-  double probe_delta = 1e-6;         // run.brownian_stress_delta (a), with parts.probe_hydro
+  double probe_delta = 1e-4;         // run.brownian_stress_delta (a), with parts.probe_hydro
   std::uint64_t seed = 42;           // Brownian noise
   std::string time_unit = "a^2/D0";  // the user's time unit (RunInfo)
   double time_scale = 1.0;           // internal time per user time unit
