@@ -8,6 +8,7 @@
 #include "dynamics/Scene.hpp"
 #include "geometry/HardBodyMonteCarlo.hpp"
 #include "observers/FakeSink.hpp"
+#include "oracle/HardCoreContact.hpp"
 #include "oracle/PairVirial.hpp"
 #include "run/StepLoop.hpp"
 
@@ -104,6 +105,8 @@ BrownianEquilibrium run_brownian(const EquilibriumScene& scene, const BrownianOp
   out.g = oracle::RadialHistogram(oracle::PairPoints::BodyCentres, opt.bin_width, opt.r_max);
   out.min_gap = INFINITY;
   oracle::PairVirial virial(s, {repulsion.get()});
+  std::unique_ptr<oracle::HardCoreContact> contact;
+  if (opt.contact_term) contact = std::make_unique<oracle::HardCoreContact>(s);
   for (std::int64_t k = 0; k < warm; ++k) loop.step(sink);
   for (int b = 0; b < opt.blocks; ++b) {
     double z = 0.0;
@@ -112,11 +115,17 @@ BrownianEquilibrium run_brownian(const EquilibriumScene& scene, const BrownianOp
       out.g.add_sample(s);
       z += 1.0 + virial.measure(s).body.trace() / (3.0 * double(s.size()) * s.physics().kT);
       out.min_gap = std::min(out.min_gap, sc.list.min_gap(s));
+      if (contact) contact->add_sample(s);
     }
     out.g.end_block();
+    if (contact) contact->end_block();
     out.Z_blocks.push_back(z / double(per_block));
   }
   out.Z = oracle::block_mean(out.Z_blocks);
+  if (contact) {
+    out.Z_contact_blocks = contact->block_values();
+    out.Z_contact = oracle::block_mean(out.Z_contact_blocks);
+  }
   out.steps = s.step();
   out.accepted = loop.statistics().accepted_steps();
   out.rejected = loop.statistics().rejected_attempts();
@@ -148,6 +157,7 @@ BrownianEquilibrium run_brownian_replicas(const EquilibriumScene& scene, Brownia
     out.Z_blocks.push_back(r.Z.mean);
     if (opt.stress_every > 0) out.Z_observer_blocks.push_back(r.Z_observer);
     if (opt.stress_every > 0) out.Z_particle_blocks.push_back(r.Z_particle);
+    if (opt.contact_term) out.Z_contact_blocks.push_back(r.Z_contact.mean);
     out.steps += r.steps;
     out.accepted += r.accepted;
     out.rejected += r.rejected;
@@ -155,6 +165,7 @@ BrownianEquilibrium run_brownian_replicas(const EquilibriumScene& scene, Brownia
     out.seconds += r.seconds;
   }
   out.Z = oracle::block_mean(out.Z_blocks);
+  if (opt.contact_term) out.Z_contact = oracle::block_mean(out.Z_contact_blocks);
   if (opt.stress_every > 0) {
     const oracle::MeanError z = oracle::block_mean(out.Z_observer_blocks);
     out.Z_observer = z.mean;

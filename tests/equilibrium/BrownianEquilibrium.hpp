@@ -49,6 +49,10 @@ struct BrownianOptions {
   // The step loop's stability guard (run.max_overlap): a step leaving a deeper node overlap is
   // rejected and retried shorter, which would bias a potential whose equilibrium has such overlaps.
   double max_overlap = 0.1;  // a
+  // The hard core's contact term of the sampled configurations (oracle/HardCoreContact: f(0+)/(3N),
+  // without exp(-U(0)/kT)), to tell a run that samples the wrong contact density from a stress
+  // estimator that misreads the right one. Nodes of one radius only.
+  bool contact_term = false;
 };
 
 struct BrownianEquilibrium {
@@ -59,8 +63,10 @@ struct BrownianEquilibrium {
   std::vector<double> Z_observer_blocks;         // replicas: each run's observer Z (one block each)
   double Z_particle = 0.0, Z_particle_se = 0.0;  // observer Z with every part (if it wrote one)
   std::vector<double> Z_particle_blocks;         // replicas: each run's Z_particle
-  std::int64_t steps = 0;                        // frames (= steps at a fixed dt)
-  std::int64_t accepted = 0;                     // time steps taken
+  std::vector<double> Z_contact_blocks;          // with contact_term: per block (replicas: per run)
+  oracle::MeanError Z_contact;
+  std::int64_t steps = 0;     // frames (= steps at a fixed dt)
+  std::int64_t accepted = 0;  // time steps taken
   std::int64_t rejected = 0;  // step attempts the loop rejected (0 for an undisturbed fixed-step run)
   double min_gap = 0.0;       // smallest node surface gap seen at the samples
   double seconds = 0.0;
