@@ -28,9 +28,10 @@ void move_from(System& s, const BodySnapshot& base, const double* U, double h) {
     const double* u = U + 6 * i;
     x[i] = base.positions[i] + h * Vec3(u[0], u[1], u[2]);
     const Vec3 w(u[3], u[4], u[5]);
-    const double angle = h * w.norm();
+    // The rotation by h |w| about w / |w|; h may be negative (BrownianStressProbe's backward point).
+    const double rate = w.norm();
     Quat dq = Quat::Identity();
-    if (angle > 0.0) dq = Quat(Eigen::AngleAxisd(angle, w.normalized()));
+    if (rate > 0.0 && h != 0.0) dq = Quat(Eigen::AngleAxisd(h * rate, w / rate));
     q[i] = (dq * base.orientations[i]).normalized();
   }
   s.box().set_strain(base.strain + h * s.physics().shear_rate);
