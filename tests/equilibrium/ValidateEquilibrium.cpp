@@ -53,6 +53,22 @@ struct Case {
   int runs = 0;   // > 0: that many independent runs (seeds seed, seed + 1, ...) as the blocks
 };
 
+// The three bodies whose pressure is validated: the case names end in the suffix.
+struct PressureShape {
+  const char* suffix;
+  const char* shape;
+  const char* params;
+};
+constexpr PressureShape kPressureShapes[] = {{"spheres", "sphere", "{}"},
+                                             {"dicolloid02", "dicolloid", "{a: 1, b: 1, c: 0.2}"},
+                                             {"dicolloid1", "dicolloid", "{a: 1, b: 1, c: 1}"}};
+
+Case with_shape(Case c, const PressureShape& shape) {
+  c.scene.shape = shape.shape;
+  c.scene.shape_params = shape.params;
+  return c;
+}
+
 std::map<std::string, Case> cases() {
   std::map<std::string, Case> c;
   Case base;
@@ -101,13 +117,9 @@ std::map<std::string, Case> cases() {
   nt.bd.duration = 5.0;
   nt.expect_pass = false;
   c["spheres_notaper"] = nt;
-  for (const auto& [name, shape, params] :
-       {std::tuple{"pressure_spheres", "sphere", "{}"},
-        std::tuple{"pressure_dicolloid02", "dicolloid", "{a: 1, b: 1, c: 0.2}"},
-        std::tuple{"pressure_dicolloid1", "dicolloid", "{a: 1, b: 1, c: 1}"}}) {
-    Case p = base;
-    p.scene.shape = shape;
-    p.scene.shape_params = params;
+  for (const PressureShape& shape : kPressureShapes) {
+    const std::string name = std::string("pressure_") + shape.suffix;
+    Case p = with_shape(base, shape);
     // The repulsion widened to 0.1 a so that the run is accurate at its step (OsmoticPressureTest.cpp:
     // the default one, 1 kT per 0.006 a of overlap, needs dt << 1e-5 a^2/D0).
     p.scene.hydro = "free_draining";
@@ -131,20 +143,15 @@ std::map<std::string, Case> cases() {
     q.bd.tolerance = 1e-3;
     q.bd.sample_every = 1;
     q.bd.stress_every = 1;
-    c[std::string(name) + "_auto"] = q;
+    c[name + "_auto"] = q;
   }
   // The whole particle pressure of FLD runs at Pe 0 (issue 11 part 6 for lubricated bodies), as
   // OsmoticPressure.FldSpheresMatchTheHardCoreEquationOfState: FLD defaults, dt 2.5e-4, independent
   // runs of 0.2 + 0.8 a^2/D0 with the stress observer every 4 steps, against the hard-core
   // oracle's Z_hard_core; the hard core's contact term of the runs' own configurations is printed
   // beside it (a wrong contact density and a wrong stress estimate are told apart).
-  for (const auto& [name, shape, params] :
-       {std::tuple{"pressure_fld_spheres", "sphere", "{}"},
-        std::tuple{"pressure_fld_dicolloid02", "dicolloid", "{a: 1, b: 1, c: 0.2}"},
-        std::tuple{"pressure_fld_dicolloid1", "dicolloid", "{a: 1, b: 1, c: 1}"}}) {
-    Case f = base;
-    f.scene.shape = shape;
-    f.scene.shape_params = params;
+  for (const PressureShape& shape : kPressureShapes) {
+    Case f = with_shape(base, shape);
     f.scene.count = 125;
     f.runs = 32;
     f.bd.equilibrate = 0.2;
@@ -154,7 +161,7 @@ std::map<std::string, Case> cases() {
     f.bd.contact_term = true;
     f.mc.sweeps = 100000;
     f.particle_pressure = true;
-    c[name] = f;
+    c[std::string("pressure_fld_") + shape.suffix] = f;
   }
   return c;
 }
@@ -319,7 +326,9 @@ int main(int argc, char** argv) {
     if (argc > 1) {
       const std::string name = argv[1];
       if (!all.count(name)) {
-        std::cerr << "unknown case " << name << "\n";
+        std::cerr << "unknown case " << name << "; the cases are:";
+        for (const auto& known : all) std::cerr << " " << known.first;
+        std::cerr << "\n";
         return 2;
       }
       Case c = all[name];

@@ -10,7 +10,7 @@ series covers only the samples after its last resume; the sweep keeps what a sig
 LABEL.h5.interrupted, .interrupted.2, ..., so the blocks are taken over those series and the final
 one joined in time (the last column says when samples are still missing).
 """
-import glob, math, os, re, sys
+import glob, math, os, sys
 import h5py, numpy as np
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "sensitivity"))
 import table
@@ -18,36 +18,17 @@ Q = ["orientation/delta_theta_m", "orientation/delta_phi_m", "orientation/S_xx",
      "orientation/S_zz", "orientation/decorrelation_time", "stress/eta_r", "stress/N1", "stress/N2"]
 
 
-def theta_series(h5):
-    g = h5.get("timeseries/orientation/theta_m")
-    if g is None:
-        return np.empty(0), np.empty(0)
-    return np.asarray(g["time"]), np.asarray(g["value"]) - 1.0
-
-
 def stitched_blocks(path, h5):
     """table.blocks over the interrupted parts' series and the final one, joined in time."""
-    t, v = theta_series(h5)
+    t, v = table.theta_series(h5)
     for part in sorted(glob.glob(path + ".interrupted*")):
         with h5py.File(part, "r") as f:
-            tp, vp = theta_series(f)
+            tp, vp = table.theta_series(f)
         keep = tp < (t[0] if len(t) else math.inf) - 1e-6
         t, v = np.concatenate([tp[keep], t]), np.concatenate([vp[keep], v])
     order = np.argsort(t, kind="stable")
-    t, v = t[order], v[order]
-    if len(t) == 0:
-        return "", "", ""
-    d = h5["results/orientation/delta_theta_m"]
-    match = re.search(r"mean over (\d+) samples", table.text(d.attrs.get("description", "")))
-    samples = int(match.group(1)) if match else len(t)
-    window = f"{t[-1] - (samples - 1) * table.generate.SAMPLE:g}–{t[-1]:g}"
-    edges = np.arange(t[0], t[-1] + 1e-9, table.BLOCK)
-    means = [v[(t >= a) & (t < a + table.BLOCK)].mean() for a in edges[:-1]]
-    spread = f"{np.mean(means):+.3f} ± {np.std(means, ddof=1) / math.sqrt(len(means)):.3f}" if len(means) > 1 else "–"
-    listed = " ".join(f"{m:+.3f}" for m in means)
-    if samples != len(t):
-        listed += f" (samples missing: series over {t[0]:g}–{t[-1]:g}, {len(t)} of {samples})"
-    return window, spread, listed
+    return table.block_summary(h5, t[order], v[order], lambda t, n, samples:
+                               f"samples missing: series over {t[0]:g}–{t[-1]:g}, {n} of {samples}")
 
 
 rows = []

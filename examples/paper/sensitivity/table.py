@@ -42,13 +42,21 @@ def cell(h5, path):
     return f"{value:+.3f} ± {se:.3f}{flag}"
 
 
-def blocks(h5):
+def theta_series(h5):
+    """The orientation observer's (time, theta_m - 1) series; empty arrays when it has none."""
     g = h5.get("timeseries/orientation/theta_m")
     if g is None:
+        return np.empty(0), np.empty(0)
+    return np.asarray(g["time"]), np.asarray(g["value"]) - 1.0
+
+
+def block_summary(h5, t, v, missing):
+    """(window, mean +- SE of the BLOCK-strain block means, the block means) of the series t, v.
+
+    The window is that of the averages, which cover every sample the observer took (its state
+    survives --resume); when the series holds fewer samples, missing(t, n, samples) says so."""
+    if len(t) == 0:
         return "", "", ""
-    t, v = np.asarray(g["time"]), np.asarray(g["value"]) - 1.0
-    # The averages cover every sample the observer took (its state survives --resume); a resumed
-    # run's time series holds only the samples after the resume, so the blocks may cover less.
     d = h5["results/orientation/delta_theta_m"]
     match = re.search(r"mean over (\d+) samples", text(d.attrs.get("description", "")))
     samples = int(match.group(1)) if match else len(t)
@@ -58,8 +66,14 @@ def blocks(h5):
     spread = f"{np.mean(means):+.3f} ± {np.std(means, ddof=1) / math.sqrt(len(means)):.3f}" if len(means) > 1 else "–"
     listed = " ".join(f"{m:+.3f}" for m in means)
     if samples != len(t):
-        listed += f" (resumed run: blocks over {t[0]:g}–{t[-1]:g} only)"
+        listed += f" ({missing(t, len(t), samples)})"
     return window, spread, listed
+
+
+def blocks(h5):
+    # A resumed run's time series holds only the samples after the resume.
+    t, v = theta_series(h5)
+    return block_summary(h5, t, v, lambda t, n, samples: f"resumed run: blocks over {t[0]:g}–{t[-1]:g} only")
 
 
 def row(path):
