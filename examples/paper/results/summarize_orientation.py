@@ -10,7 +10,7 @@ series covers only the samples after its last resume; the sweep keeps what a sig
 LABEL.h5.interrupted, .interrupted.2, ..., so the blocks are taken over those series and the final
 one joined in time (the last column says when samples are still missing).
 """
-import glob, math, os, sys
+import csv, glob, math, os, sys
 import h5py, numpy as np
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "sensitivity"))
 import table
@@ -46,6 +46,8 @@ for p in sorted(glob.glob(sys.argv[1] + "/*.h5")):
         r["window"] = w; r["blocks_20_strain"] = spread; r["block_means"] = blocks
         rows.append(r)
 keys = ["point", "window"] + [k for q in Q for k in (q, q + "_se", q + "_no_plateau")] + ["blocks_20_strain", "block_means"]
-print(",".join(keys))
+# csv quotes the fields that hold commas (the "samples missing" note of block_means).
+out = csv.writer(sys.stdout, lineterminator="\n")
+out.writerow(keys)
 for r in rows:
-    print(",".join(str(r.get(k, "")) if not isinstance(r.get(k), float) else f"{r[k]:.5g}" for k in keys))
+    out.writerow(str(r.get(k, "")) if not isinstance(r.get(k), float) else f"{r[k]:.5g}" for k in keys)
