@@ -14,8 +14,9 @@ mkdir -p "$out"
 export OMP_NUM_THREADS=${OMP_NUM_THREADS:-1}
 
 # Equilibrium (issue 11): Brownian runs (N = 500, 40 a^2/D0) against the Monte Carlo oracle of the
-# same potential: g(r) bin tables, contact and cutoff ratios, and Z of free-draining runs for
-# spheres, c/a = 0.2 and c/a = 1 (tests/equilibrium/ValidateEquilibrium.cpp). About 1-2 hours.
+# same potential: g(r) bin tables, contact and cutoff ratios, Z of free-draining runs and Z_particle
+# of FLD runs for spheres, c/a = 0.2 and c/a = 1, FLD at dt: auto (tests/equilibrium/
+# ValidateEquilibrium.cpp; validate/README.md lists the cases). About 4-5 hours on one core.
 equilibrium() {
   cmake --build "$build" -j2 --target fldsim_validate_equilibrium > "$out/equilibrium.build.log" 2>&1 || {
     tail -20 "$out/equilibrium.build.log"; return 1; }

@@ -1,4 +1,5 @@
-// Adaptive steps (`dt: auto`) against the Monte Carlo oracle of the same potential, at Pe = 0.
+// Adaptive steps (`dt: auto`) against the Monte Carlo oracle of the same potential, at Pe = 0
+// (FLD spheres against its hard core: the last tests, with their own comment).
 // Free-draining spheres and homonuclear dicolloids (c/a 0.2, at the end) at phi = 0.3 are the
 // hard case: the mobility at contact is the isolated
 // body's, so the repulsion (0 to 166.6 kT/a over gaps 1e-3 to 1e-5 a, then a constant force below
@@ -69,6 +70,7 @@ using oracle::GrComparisonOptions;
 // Independent runs and their length (a^2/D0), see above.
 constexpr int kRuns = 8;
 constexpr double kEquilibrate = 0.03, kDuration = 0.1;
+constexpr int kFldRuns = 16;  // FLD at dt: auto (its own comment below)
 
 GrComparisonOptions comparison_range() {
   GrComparisonOptions o;
@@ -168,6 +170,85 @@ TEST(AdaptiveEquilibrium, FreeDrainingDicolloidsMatchTheOracle) {
                             "dicolloids c/a 0.2, dt: auto, tolerance 5e-4 a");
   EXPECT_TRUE(v.g.pass()) << "g(r) differs from the oracle";
   EXPECT_LT(std::fabs(v.Z.z), 3.0) << "Z differs from the oracle's by more than 3 standard errors";
+}
+
+// FLD at dt: auto (issue 13 item 4). With lubrication the squeeze mobility vanishes with the gap,
+// so the steps never reach the repulsion's overlap population and the reference is the oracle's
+// hard core, as for the fixed-step FLD tests (EquilibriumComparisonTest.cpp): body-centre g(r) in
+// 0.02 a bins from contact to 3 a (same family-wise rule), and the hard core's contact term
+// f(0+)/(3N) of the sampled configurations against the oracle's (the contact density that issue 11
+// part 4 is about; spheres also the contact shell 2.00-2.05 a), each |z| < 3. The molecular virial
+// Z is not compared: the few shallow overlaps FLD does reach (smallest gap -1e-3 a) carry a
+// heavy-tailed virial that the hard core has none of (32 runs: 1.167 +- 0.050 against 1.022).
+// Tolerance 1e-3 a (frame 1e-3 a^2/D0): mean steps of 5e-5 a^2/D0 where pairs touch, about 5
+// times the steps of the fixed 2.5e-4 the fixed-step tests use (docs/lubrication-taper.md: at
+// Pe = 0 the fixed step is the cheaper exact route; this test is that the controller is exact).
+// 16 independent runs of 0.03 + 0.1 a^2/D0 (the free-draining runs' length), about 50 CPU s.
+// Measured (fldsim_validate_equilibrium spheres|dicolloid02 n=125 adaptive=1 dt=1e-3
+// tolerance=1e-3 runs=16 seed=1 equilibrate=0.03|0.15 duration=0.1 every=1 oracle_sweeps=20000
+// contact_term=1):
+//   spheres, seeds 1-16: g max |z| 1.82, chi-square 38.2 on 50 bins (p 0.89); contact shell
+//     1.003 +- 0.026; contact term 3.085 +- 0.113 against 2.950 +- 0.022 (ratio 1.046, z 1.2);
+//     seeds 101-132 (32 runs): max |z| 2.23, p 0.73, shell 1.003 +- 0.019, contact term ratio 0.978
+//     (z -0.7);
+//   homonuclear dicolloids c/a 0.2, seeds 1-16 (relaxed 0.15): max |z| 1.90, p 0.88, contact term
+//     ratio 1.024 +- 0.047, but 228 000 steps (mean 1.8e-5 a^2/D0): too long for CI, so only in
+//     make validate (fld_auto_dicolloid02, 32 runs; fld_auto_spheres, 64 runs).
+// Broken variant, measured once on the same seeds: without the thermal drift (dt: auto refuses
+// drift: none, which has no embedded estimate, so at the fixed mean step 5e-5: spheres runs=16
+// seed=1 drift=none dt=5e-5 every=20) the contact shell is 1.83 +- 0.02 (z 35), the contact term
+// 4.5 times the oracle's (z 44), g(2.00-2.02) 3.3 times (z 43): fails.
+EquilibriumScene fld_spheres() {
+  EquilibriumScene s;  // fld with its defaults, the default repulsion
+  s.count = 125;
+  s.phi = 0.3;
+  return s;
+}
+
+BrownianOptions fld_adaptive_options(double equilibrate) {
+  BrownianOptions opt = adaptive_options();
+  opt.tolerance = 1e-3;
+  opt.equilibrate = equilibrate;
+  opt.contact_term = true;
+  return opt;
+}
+
+struct HardCoreVerdict {
+  GrComparison g;
+  oracle::BinComparison shell, contact;
+};
+
+HardCoreVerdict compare_with_hard_core(const EquilibriumScene& scene, const BrownianOptions& opt,
+                                       const std::string& what) {
+  const oracle::OracleResult mc = run_scene_oracle(scene, comparison_oracle_options(true));
+  const BrownianEquilibrium bd = run_brownian_replicas(scene, opt, kFldRuns);
+  GrComparisonOptions o;
+  o.r_from = 2.0;  // the hard core has no overlaps
+  o.r_to = 3.0;
+  HardCoreVerdict v;
+  v.g = oracle::compare_gr(bd.g.rebinned(2), mc.bodies.rebinned(2), o);
+  v.shell = oracle::compare_means(oracle::block_mean(bd.g.shell_block_values(2.0, 2.05)),
+                                  oracle::block_mean(mc.bodies.shell_block_values(2.0, 2.05)));
+  // The oracle's contact term carries exp(-U(0)/kT); the configurations' does not.
+  const double b = mc.boltzmann_at_contact;
+  v.contact =
+      oracle::compare_means(bd.Z_contact, {mc.Z_contact.mean / b, mc.Z_contact.se / b, mc.Z_contact.blocks});
+  std::cout << what << ": " << scene.describe() << "\n  " << kFldRuns << " runs, " << bd.steps << " frames, "
+            << bd.accepted << " steps, " << bd.rejected << " rejected, smallest gap " << bd.min_gap << " a, "
+            << bd.seconds << " s\n  contact shell 2.00-2.05 a: ratio " << v.shell.ratio << ", z " << v.shell.z
+            << "\n  hard core's contact term of the configurations " << bd.Z_contact.mean << " +- "
+            << bd.Z_contact.se << " against the oracle's " << mc.Z_contact.mean / b << " +- "
+            << mc.Z_contact.se / b << " (ratio " << v.contact.ratio << ", z " << v.contact.z << ")\n"
+            << v.g.table(o);
+  return v;
+}
+
+TEST(AdaptiveEquilibrium, FldSpheresMatchTheHardCoreOracle) {
+  const HardCoreVerdict v = compare_with_hard_core(fld_spheres(), fld_adaptive_options(kEquilibrate),
+                                                   "fld spheres, dt: auto, tolerance 1e-3 a");
+  EXPECT_TRUE(v.g.pass()) << "g(r) differs from the hard-core oracle";
+  EXPECT_LT(std::fabs(v.shell.z), 3.0) << "the contact shell differs from the oracle's";
+  EXPECT_LT(std::fabs(v.contact.z), 3.0) << "the contact density differs from the oracle's";
 }
 
 TEST(AdaptiveEquilibrium, FixedStepOfTheExamplesFailsTheSameComparison) {

@@ -9,17 +9,19 @@
 // cutoff), and pressure_spheres, pressure_dicolloid02,
 // pressure_dicolloid1 (free_draining with the widened repulsion of OsmoticPressureTest at dt 5e-5: the stress
 // observer's Z against the oracle), pressure_<shape>_auto (the same at dt: auto, frame 1e-3,
-// tolerance 1e-3 a), pressure_fld_spheres, pressure_fld_dicolloid02, pressure_fld_dicolloid1 (FLD defaults at
-// dt 2.5e-4, 32 runs: the stress observer's Z_particle against the hard-core oracle's equation of state).
-// Keys: n, phi, dt, duration, equilibrate, blocks, every, seed, hydro, hydro_params, force_params, drift
-// (midpoint|none), oracle_sweeps, oracle_blocks, stress_every, max_overlap, adaptive (0|1), tolerance,
-// reject_at, rejected (bridge|redraw), hard_core (0|1: the oracle's), contact_term (0|1: the hard core's
-// contact term of the run's own configurations against the oracle's), runs (R > 0: R independent runs of
-// equilibrate + duration, seeds seed .. seed + R - 1, one block each, as the CI tests do), rebin (comparison
-// bins of rebin x 0.01 a; 2). Prints per case: g(r) bin table (0.02 a), the 0.01 a bins around contact
-// (2.00-2.10 a) and around the lubrication cutoff (2.40-2.60 a) as ratios g_BD/g_MC, the contact
-// shell 2.00-2.05 a, and Z (configurational virial and stress observer) against the oracle. Exit code 1 if a
-// case that should pass fails (or one that should fail passes).
+// tolerance 1e-3 a), fld_auto_spheres, fld_auto_dicolloid02 (FLD at dt: auto against the hard core,
+// as AdaptiveEquilibriumTest: g(r) and, with contact_term, the contact term within 3 SE),
+// pressure_fld_spheres, pressure_fld_dicolloid02, pressure_fld_dicolloid1 (FLD defaults at dt 2.5e-4, 32
+// runs: the stress observer's Z_particle against the hard-core oracle's equation of state). Keys: n, phi, dt,
+// duration, equilibrate, blocks, every, seed, hydro, hydro_params, force_params, drift (midpoint|none),
+// oracle_sweeps, oracle_blocks, stress_every, max_overlap, adaptive (0|1), tolerance, reject_at, rejected
+// (bridge|redraw), hard_core (0|1: the oracle's), contact_term (0|1: the hard core's contact term of the
+// run's own configurations against the oracle's), runs (R > 0: R independent runs of equilibrate + duration,
+// seeds seed .. seed + R - 1, one block each, as the CI tests do), rebin (comparison bins of rebin x 0.01 a;
+// 2). Prints per case: g(r) bin table (0.02 a), the 0.01 a bins around contact (2.00-2.10 a) and around the
+// lubrication cutoff (2.40-2.60 a) as ratios g_BD/g_MC, the contact shell 2.00-2.05 a, and Z (configurational
+// virial and stress observer) against the oracle. Exit code 1 if a case that should pass fails (or one that
+// should fail passes).
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -112,6 +114,28 @@ std::map<std::string, Case> cases() {
   nd.bd.duration = 5.0;
   nd.expect_pass = false;
   c["spheres_nodrift"] = nd;
+  // FLD at dt: auto (issue 13 item 4) as AdaptiveEquilibrium.FldSpheresMatchTheHardCoreOracle,
+  // with 4 times its runs for spheres and the dicolloids CI cannot afford (their steps average
+  // 1.8e-5 a^2/D0: 228 000 steps for 16 runs): N 125, frame 1e-3, tolerance 1e-3 a, independent
+  // runs of 0.1 a^2/D0 after 0.03 (dicolloids 0.15), the hard core's contact term beside g(r).
+  for (const auto& [name, shape, params, equilibrate, runs] :
+       {std::tuple{"fld_auto_spheres", "sphere", "{}", 0.03, 64},
+        std::tuple{"fld_auto_dicolloid02", "dicolloid", "{a: 1, b: 1, c: 0.2}", 0.15, 32}}) {
+    Case a = base;
+    a.scene.shape = shape;
+    a.scene.shape_params = params;
+    a.scene.count = 125;
+    a.runs = runs;
+    a.bd.adaptive = true;
+    a.bd.dt = 1e-3;
+    a.bd.tolerance = 1e-3;
+    a.bd.equilibrate = equilibrate;
+    a.bd.duration = 0.1;
+    a.bd.sample_every = 1;
+    a.bd.contact_term = true;
+    a.mc.sweeps = 20000;
+    c[name] = a;
+  }
   Case nt = base;
   nt.scene.hydro_params = "{taper: none}";
   nt.bd.duration = 5.0;
@@ -265,14 +289,17 @@ bool run_case(const std::string& name, const Case& c) {
       bd.Z.mean, bd.Z.se, bd.Z_observer, bd.Z_observer_se, mc.Z.mean, mc.Z.se, z.ratio, z.z);
   const auto overlaps = oracle::compare_means(oracle::block_mean(bd.g.shell_block_values(1.98, 2.0)),
                                               oracle::block_mean(mc.bodies.shell_block_values(1.98, 2.0)));
+  double contact_z = 0.0;  // asserted with the g(r) comparison
   if (c.bd.contact_term && c.mc.hard_core) {
-    const auto ct = oracle::compare_means(bd.Z_contact, mc.Z_contact);
+    // The oracle's contact term carries exp(-U(0)/kT); the configurations' does not.
+    const double b = mc.boltzmann_at_contact;
+    const auto ct = oracle::compare_means(bd.Z_contact,
+                                          {mc.Z_contact.mean / b, mc.Z_contact.se / b, mc.Z_contact.blocks});
+    contact_z = ct.z;
     std::printf(
         "hard core's contact term f(0+)/(3N) of the sampled configurations: dynamics %.4f +- %.4f, "
         "oracle %.4f +- %.4f (x exp(-U(0)/kT) = %.4f there), ratio %.4f, z %.2f\n",
-        bd.Z_contact.mean, bd.Z_contact.se, mc.Z_contact.mean / mc.boltzmann_at_contact,
-        mc.Z_contact.se / mc.boltzmann_at_contact, mc.boltzmann_at_contact,
-        ct.ratio * mc.boltzmann_at_contact, ct.z);
+        bd.Z_contact.mean, bd.Z_contact.se, ct.b.mean, ct.b.se, b, ct.ratio, ct.z);
   }
   if (c.bd.stress_every > 0)
     std::printf(
@@ -302,7 +329,7 @@ bool run_case(const std::string& name, const Case& c) {
                                              oracle::block_mean(mc.bodies.shell_block_values(2.0, 2.05)));
     std::printf("contact shell 2.00-2.05 a: g_BD/g_MC = %.4f +- %.4f (z %.2f)\n", shell.ratio,
                 shell.ratio * std::hypot(shell.a.se / shell.a.mean, shell.b.se / shell.b.mean), shell.z);
-    ok = cmp.pass();
+    ok = cmp.pass() && std::abs(contact_z) < 3.0;
   }
   const bool as_expected = ok == c.expect_pass;
   std::cout << name << ": " << (ok ? "pass" : "fail")
