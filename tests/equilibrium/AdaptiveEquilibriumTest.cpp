@@ -229,16 +229,13 @@ HardCoreVerdict compare_with_hard_core(const EquilibriumScene& scene, const Brow
   v.g = oracle::compare_gr(bd.g.rebinned(2), mc.bodies.rebinned(2), o);
   v.shell = oracle::compare_means(oracle::block_mean(bd.g.shell_block_values(2.0, 2.05)),
                                   oracle::block_mean(mc.bodies.shell_block_values(2.0, 2.05)));
-  // The oracle's contact term carries exp(-U(0)/kT); the configurations' does not.
-  const double b = mc.boltzmann_at_contact;
-  v.contact =
-      oracle::compare_means(bd.Z_contact, {mc.Z_contact.mean / b, mc.Z_contact.se / b, mc.Z_contact.blocks});
+  v.contact = oracle::compare_means(bd.Z_contact, contact_term_reference(mc));
   std::cout << what << ": " << scene.describe() << "\n  " << kFldRuns << " runs, " << bd.steps << " frames, "
             << bd.accepted << " steps, " << bd.rejected << " rejected, smallest gap " << bd.min_gap << " a, "
             << bd.seconds << " s\n  contact shell 2.00-2.05 a: ratio " << v.shell.ratio << ", z " << v.shell.z
             << "\n  hard core's contact term of the configurations " << bd.Z_contact.mean << " +- "
-            << bd.Z_contact.se << " against the oracle's " << mc.Z_contact.mean / b << " +- "
-            << mc.Z_contact.se / b << " (ratio " << v.contact.ratio << ", z " << v.contact.z << ")\n"
+            << bd.Z_contact.se << " against the oracle's " << v.contact.b.mean << " +- " << v.contact.b.se
+            << " (ratio " << v.contact.ratio << ", z " << v.contact.z << ")\n"
             << v.g.table(o);
   return v;
 }

@@ -53,6 +53,11 @@ oracle::OracleResult run_scene_oracle(const EquilibriumScene& scene, const oracl
   return oracle::run_oracle(s, {make<ForceLaw>("force", "repulsion", scene.force_params)}, opt);
 }
 
+oracle::MeanError contact_term_reference(const oracle::OracleResult& mc) {
+  const double b = mc.boltzmann_at_contact;
+  return {mc.Z_contact.mean / b, mc.Z_contact.se / b, mc.Z_contact.blocks};
+}
+
 BrownianEquilibrium run_brownian(const EquilibriumScene& scene, const BrownianOptions& opt) {
   const auto wall0 = std::chrono::steady_clock::now();
   auto shape = make<Shape>("shape", scene.shape, scene.shape_params);

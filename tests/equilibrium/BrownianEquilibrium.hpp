@@ -84,5 +84,8 @@ BrownianEquilibrium run_brownian_replicas(const EquilibriumScene& scene, Brownia
 oracle::OracleOptions comparison_oracle_options(bool hard_core);
 
 oracle::OracleResult run_scene_oracle(const EquilibriumScene& scene, const oracle::OracleOptions& opt);
+// The hard-core oracle's contact term as BrownianOptions::contact_term measures it on a run's
+// configurations: f(0+)/(3N) without the factor exp(-U(0)/kT) that the oracle's Z_contact carries.
+oracle::MeanError contact_term_reference(const oracle::OracleResult& mc);
 
 }  // namespace fldsim::testing

@@ -291,15 +291,12 @@ bool run_case(const std::string& name, const Case& c) {
                                               oracle::block_mean(mc.bodies.shell_block_values(1.98, 2.0)));
   double contact_z = 0.0;  // asserted with the g(r) comparison
   if (c.bd.contact_term && c.mc.hard_core) {
-    // The oracle's contact term carries exp(-U(0)/kT); the configurations' does not.
-    const double b = mc.boltzmann_at_contact;
-    const auto ct = oracle::compare_means(bd.Z_contact,
-                                          {mc.Z_contact.mean / b, mc.Z_contact.se / b, mc.Z_contact.blocks});
+    const auto ct = oracle::compare_means(bd.Z_contact, contact_term_reference(mc));
     contact_z = ct.z;
     std::printf(
         "hard core's contact term f(0+)/(3N) of the sampled configurations: dynamics %.4f +- %.4f, "
         "oracle %.4f +- %.4f (x exp(-U(0)/kT) = %.4f there), ratio %.4f, z %.2f\n",
-        bd.Z_contact.mean, bd.Z_contact.se, ct.b.mean, ct.b.se, b, ct.ratio, ct.z);
+        bd.Z_contact.mean, bd.Z_contact.se, ct.b.mean, ct.b.se, mc.boltzmann_at_contact, ct.ratio, ct.z);
   }
   if (c.bd.stress_every > 0)
     std::printf(
