@@ -205,10 +205,9 @@ EquilibriumScene fld_spheres() {
   return s;
 }
 
-BrownianOptions fld_adaptive_options(double equilibrate) {
+BrownianOptions fld_adaptive_options() {
   BrownianOptions opt = adaptive_options();
   opt.tolerance = 1e-3;
-  opt.equilibrate = equilibrate;
   opt.contact_term = true;
   return opt;
 }
@@ -241,7 +240,7 @@ HardCoreVerdict compare_with_hard_core(const EquilibriumScene& scene, const Brow
 }
 
 TEST(AdaptiveEquilibrium, FldSpheresMatchTheHardCoreOracle) {
-  const HardCoreVerdict v = compare_with_hard_core(fld_spheres(), fld_adaptive_options(kEquilibrate),
+  const HardCoreVerdict v = compare_with_hard_core(fld_spheres(), fld_adaptive_options(),
                                                    "fld spheres, dt: auto, tolerance 1e-3 a");
   EXPECT_TRUE(v.g.pass()) << "g(r) differs from the hard-core oracle";
   EXPECT_LT(std::fabs(v.shell.z), 3.0) << "the contact shell differs from the oracle's";

@@ -55,17 +55,17 @@ struct Case {
   int runs = 0;   // > 0: that many independent runs (seeds seed, seed + 1, ...) as the blocks
 };
 
-// The three bodies whose pressure is validated: the case names end in the suffix.
-struct PressureShape {
+// The bodies the cases validate: the case names end in the suffix.
+struct BodyShape {
   const char* suffix;
   const char* shape;
   const char* params;
 };
-constexpr PressureShape kPressureShapes[] = {{"spheres", "sphere", "{}"},
-                                             {"dicolloid02", "dicolloid", "{a: 1, b: 1, c: 0.2}"},
-                                             {"dicolloid1", "dicolloid", "{a: 1, b: 1, c: 1}"}};
+constexpr BodyShape kShapes[] = {{"spheres", "sphere", "{}"},
+                                 {"dicolloid02", "dicolloid", "{a: 1, b: 1, c: 0.2}"},
+                                 {"dicolloid1", "dicolloid", "{a: 1, b: 1, c: 1}"}};
 
-Case with_shape(Case c, const PressureShape& shape) {
+Case with_shape(Case c, const BodyShape& shape) {
   c.scene.shape = shape.shape;
   c.scene.shape_params = shape.params;
   return c;
@@ -118,12 +118,9 @@ std::map<std::string, Case> cases() {
   // with 4 times its runs for spheres and the dicolloids CI cannot afford (their steps average
   // 1.8e-5 a^2/D0: 228 000 steps for 16 runs): N 125, frame 1e-3, tolerance 1e-3 a, independent
   // runs of 0.1 a^2/D0 after 0.03 (dicolloids 0.15), the hard core's contact term beside g(r).
-  for (const auto& [name, shape, params, equilibrate, runs] :
-       {std::tuple{"fld_auto_spheres", "sphere", "{}", 0.03, 64},
-        std::tuple{"fld_auto_dicolloid02", "dicolloid", "{a: 1, b: 1, c: 0.2}", 0.15, 32}}) {
-    Case a = base;
-    a.scene.shape = shape;
-    a.scene.shape_params = params;
+  for (const auto& [shape, equilibrate, runs] :
+       {std::tuple{kShapes[0], 0.03, 64}, std::tuple{kShapes[1], 0.15, 32}}) {
+    Case a = with_shape(base, shape);
     a.scene.count = 125;
     a.runs = runs;
     a.bd.adaptive = true;
@@ -134,14 +131,14 @@ std::map<std::string, Case> cases() {
     a.bd.sample_every = 1;
     a.bd.contact_term = true;
     a.mc.sweeps = 20000;
-    c[name] = a;
+    c[std::string("fld_auto_") + shape.suffix] = a;
   }
   Case nt = base;
   nt.scene.hydro_params = "{taper: none}";
   nt.bd.duration = 5.0;
   nt.expect_pass = false;
   c["spheres_notaper"] = nt;
-  for (const PressureShape& shape : kPressureShapes) {
+  for (const BodyShape& shape : kShapes) {
     const std::string name = std::string("pressure_") + shape.suffix;
     Case p = with_shape(base, shape);
     // The repulsion widened to 0.1 a so that the run is accurate at its step (OsmoticPressureTest.cpp:
@@ -174,7 +171,7 @@ std::map<std::string, Case> cases() {
   // runs of 0.2 + 0.8 a^2/D0 with the stress observer every 4 steps, against the hard-core
   // oracle's Z_hard_core; the hard core's contact term of the runs' own configurations is printed
   // beside it (a wrong contact density and a wrong stress estimate are told apart).
-  for (const PressureShape& shape : kPressureShapes) {
+  for (const BodyShape& shape : kShapes) {
     Case f = with_shape(base, shape);
     f.scene.count = 125;
     f.runs = 32;
