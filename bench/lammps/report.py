@@ -134,6 +134,8 @@ def main():
     ap.add_argument("--phi", type=float, default=0.45)
     ap.add_argument("--before", default="", help="name of the BEFORE build (run.sh): adds its row")
     ap.add_argument("--lammps-version", default="unknown")
+    ap.add_argument("--brownian-stress", default="",
+                    help="fldsim's run.brownian_stress in the timed runs (empty: the build's default)")
     a = ap.parse_args()
     d = a.outdir
     p = lambda name: os.path.join(d, name)
@@ -206,7 +208,8 @@ def main():
     out.append(f"- eta_r = 1 + sigma_xy/(mu gammadot), mean of {n_samples} samples (every {a.every} steps) after "
                "the warm-up, error = standard error of 5 block means. LAMMPS: -P_xy of `compute pressure NULL "
                "pair/hybrid lubricateU` (its R_S0 stresslet plus lubrication pair virial, no Brownian stress); fldsim: "
-               "stress observer (isotropic and lubrication stresslets plus the Brownian stress). Over such a short window both mostly reflect the start "
+               "stress observer (isotropic and lubrication stresslets plus the Brownian stress, estimated by "
+               f"`run.brownian_stress: {a.brownian_stress or 'the build default'}`). Over such a short window both mostly reflect the start "
                "configuration; they are not steady-state values.")
     print("\n".join(out))
 

@@ -12,7 +12,11 @@
 # of each code, taking turns; the fastest is reported, 3), PHI (volume fraction of the start and the
 # fldsim scene, 0.45; give each PHI its own OUTDIR: the start is reused), BEFORE (another fldsim
 # build directory, e.g. of an earlier commit: its LAMMPS-forms run is timed in the same turns and
-# reported as a row "before", for before/after figures from one run; BEFORE_LABEL names it).
+# reported as a row "before", for before/after figures from one run; BEFORE_LABEL names it),
+# BROWNIAN_STRESS (fldsim's run.brownian_stress, midpoint: LAMMPS computes no Brownian stress, and
+# the midpoint estimate costs one stresslet sum per sample where random_difference, fldsim's
+# default, costs two assemblies and two solves; empty: the build's default, for BEFORE builds older
+# than 61a2b02, which do not know the key).
 set -euo pipefail
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -45,6 +49,9 @@ PE=10
 #               at h = 2e-4 a; a closer fit, kappa = 6106/a, loses atoms in LAMMPS at this dt)
 #   clamp       no repulsion in either code, gap floor 1e-5 a (the bench's original scene)
 SCENE="${SCENE:-documented}"
+BROWNIAN_STRESS="${BROWNIAN_STRESS-midpoint}"
+brownian_stress_set=()
+if [[ -n "$BROWNIAN_STRESS" ]]; then brownian_stress_set=(--set "run.brownian_stress=$BROWNIAN_STRESS"); fi
 case "$SCENE" in
   documented)
     CUTIN=2.01; LMP_A="$(awk "BEGIN{print 100 * $PE}")"; LMP_KAPPA=100; LMP_YCUT=2.5
@@ -124,7 +131,7 @@ run_fldsim() {
     --overwrite --set system.init.file="$outdir/start.h5" --set system.volume_fraction="$PHI" \
     --set run.duration="$("$PY" -c "print($steps * $DT)")" \
     --set "observers.0.start=$("$PY" -c "print($WARMUP * $DT)")" --set "observers.0.every=$EVERY" \
-    "${scene_set[@]}" "$@" > "$name.log" 2>&1 || { cat "$name.log" >&2; exit 1; }
+    "${brownian_stress_set[@]}" "${scene_set[@]}" "$@" > "$name.log" 2>&1 || { cat "$name.log" >&2; exit 1; }
 }
 
 # LAMMPS's exact pair forms (hydro.conventions: lammps; LammpsParityTest checks them).
@@ -194,12 +201,12 @@ if [[ "$COUNT_CG" == 1 ]] && command -v gdb > /dev/null; then
       'fldsim::BlockSparseMatrix::multiply(double const*, double*) const' -- \
       "$exe" run "$here/scene.yaml" -o "$outdir/count-$variant.h5" --overwrite \
       --set system.init.file="$outdir/start.h5" --set system.volume_fraction="$PHI" --set run.duration="$("$PY" -c "print($COUNT_STEPS * $DT)")" \
-      "${scene_set[@]}" "${extra[@]}"
+      "${brownian_stress_set[@]}" "${scene_set[@]}" "${extra[@]}"
   done
 fi
 
 "$PY" "$here/report.py" --scene "$SCENE" --outdir "$outdir" --steps "$STEPS" --warmup "$WARMUP" --every "$EVERY" --repeat "$REPEAT" \
-  --count-steps "$COUNT_STEPS" --dt "$DT" --pe "$PE" --phi "$PHI" \
+  --count-steps "$COUNT_STEPS" --dt "$DT" --pe "$PE" --phi "$PHI" --brownian-stress "$BROWNIAN_STRESS" \
   ${BEFORE:+--before "${BEFORE_LABEL:-$BEFORE}"} --lammps-version "$lmp_version ($lmp_package)" \
   > "$outdir/lammps.md"
 cat "$outdir/lammps.md"

@@ -8,6 +8,7 @@
 #include <memory>
 #include <thread>
 
+#include "linalg/Block6Kernels.hpp"
 #include "linalg/GrowOnly.hpp"
 
 namespace fldsim {
@@ -25,10 +26,6 @@ Mat6 lower_inverse(const Mat6& L) {
     }
   }
   return X;
-}
-
-Mat6 widen(const Eigen::Matrix<float, 6, 6>& m) {
-  return m.cast<double>();
 }
 
 // Spin until another thread has published `flag` >= epoch; yield after a while, so a descheduled
@@ -98,7 +95,7 @@ bool BlockIncompleteCholesky::factor_row(const BlockSparseMatrix& A, std::size_t
     const std::int64_t ki = by_col_[c];
     const std::int64_t k_end = row_start_[by_col_row_[c] + 1];
     const Mat6& Uki = upper_[ki];
-    D.noalias() -= Uki.transpose() * Uki;
+    linalg::subtract_transposed_product(D.data(), Uki.data(), Uki.data());
     // Blocks (k, j) with j > i, merged against row i's sorted columns.
     std::int64_t b = ki + 1, p = first;
     while (b < k_end && p < last) {
@@ -107,7 +104,7 @@ bool BlockIncompleteCholesky::factor_row(const BlockSparseMatrix& A, std::size_t
       else if (col_[p] < col_[b])
         ++p;
       else
-        upper_[p++].noalias() -= Uki.transpose() * upper_[b++];
+        linalg::subtract_transposed_product(upper_[p++].data(), Uki.data(), upper_[b++].data());
     }
   }
   const Eigen::LLT<Mat6> llt(D);
@@ -180,19 +177,33 @@ bool BlockIncompleteCholesky::factorize(const BlockSparseMatrix& A) {
 
 // U^T y = r: y_i = (U_ii^T)^-1 (r_i - sum_{k < i} U_ki^T y_k), into z.
 void BlockIncompleteCholesky::forward_row(std::size_t i, const double* r, double* z) const {
-  Vec6 acc = Eigen::Map<const Vec6>(r + 6 * i);
-  for (std::int64_t c = col_start_[i]; c < col_start_[i + 1]; ++c)
-    acc.noalias() -=
-        widen(lower_f_[c]).transpose() * Eigen::Map<const Vec6>(z + 6 * std::size_t(by_col_row_[c]));
-  Eigen::Map<Vec6>(z + 6 * i) = widen(pivot_f_[i]) * acc;
+  using linalg::Acc6;
+  Acc6 acc = Acc6::load(r + 6 * i);
+  for (std::int64_t c = col_start_[i]; c < col_start_[i + 1]; ++c) {
+    const Acc6 t =
+        linalg::transposed_product(lower_f_[c].data(), Acc6::load(z + 6 * std::size_t(by_col_row_[c])));
+    for (int p = 0; p < 3; ++p) acc.v[p] -= t.v[p];
+  }
+  pivot_times(i, acc, z + 6 * i);
+}
+
+// y_i = (U_ii^T)^-1 acc into out (the pivot block is lower triangular; the full product keeps the
+// kernel's fixed rounding order, and its zeros cost less than a branch per column).
+void BlockIncompleteCholesky::pivot_times(std::size_t i, const linalg::Acc6& acc, double* out) const {
+  double in[6];
+  acc.store(in);
+  linalg::Acc6 y = linalg::Acc6::zero();
+  linalg::accumulate_product<1>(y, pivot_f_[i].data(), in);
+  y.store(out);
 }
 
 // U z = y: z_i = U_ii^-1 (y_i - sum_{j > i} U_ij z_j), in place.
 void BlockIncompleteCholesky::backward_row(std::size_t i, double* z) const {
-  Vec6 acc = Eigen::Map<const Vec6>(z + 6 * i);
+  using linalg::Acc6;
+  Acc6 acc = Acc6::load(z + 6 * i);
   for (std::int64_t a = row_start_[i]; a < row_start_[i + 1]; ++a)
-    acc.noalias() -= widen(upper_f_[a]) * Eigen::Map<const Vec6>(z + 6 * std::size_t(col_[a]));
-  Eigen::Map<Vec6>(z + 6 * i) = widen(pivot_f_[i]).transpose() * acc;
+    linalg::accumulate_product<-1>(acc, upper_f_[a].data(), z + 6 * std::size_t(col_[a]));
+  linalg::transposed_product(pivot_f_[i].data(), acc).store(z + 6 * i);
 }
 
 void BlockIncompleteCholesky::apply(const double* r, double* z) const {
@@ -202,11 +213,15 @@ void BlockIncompleteCholesky::apply(const double* r, double* z) const {
     // layout. z_i receives r_i - U_ki^T y_k for k ascending, the operations of forward_row.
     std::copy(r, r + 6 * n, z);
     for (std::int64_t i = 0; i < n; ++i) {
-      const Vec6 y = widen(pivot_f_[i]) * Eigen::Map<const Vec6>(z + 6 * i);
-      Eigen::Map<Vec6>(z + 6 * i) = y;
-      for (std::int64_t a = row_start_[i]; a < row_start_[i + 1]; ++a)
-        Eigen::Map<Vec6>(z + 6 * std::size_t(col_[a])).noalias() -=
-            widen(upper_f_[a]).transpose() * Eigen::Map<const Vec6>(y.data());
+      pivot_times(std::size_t(i), linalg::Acc6::load(z + 6 * i), z + 6 * i);
+      const linalg::Acc6 y = linalg::Acc6::load(z + 6 * i);
+      for (std::int64_t a = row_start_[i]; a < row_start_[i + 1]; ++a) {
+        double* zj = z + 6 * std::size_t(col_[a]);
+        const linalg::Acc6 t = linalg::transposed_product(upper_f_[a].data(), y);
+        linalg::Acc6 acc = linalg::Acc6::load(zj);
+        for (int p = 0; p < 3; ++p) acc.v[p] -= t.v[p];
+        acc.store(zj);
+      }
     }
     for (std::int64_t i = n; i-- > 0;) backward_row(std::size_t(i), z);
     return;

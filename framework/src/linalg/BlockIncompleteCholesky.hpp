@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "fldsim/block_sparse.hpp"
+#include "linalg/Block6Kernels.hpp"
 
 namespace fldsim {
 
@@ -41,6 +42,7 @@ class FLDSIM_VISIBLE BlockIncompleteCholesky {
   bool factor_row(const BlockSparseMatrix& A, std::size_t i);
   void forward_row(std::size_t i, const double* r, double* z) const;
   void backward_row(std::size_t i, double* z) const;
+  void pivot_times(std::size_t i, const linalg::Acc6& acc, double* out) const;
 
   std::uint64_t pattern_id_ = 0;
   // A's upper pattern by rows and its transposed index (see BlockSparseMatrix).

@@ -4,6 +4,7 @@
 #include <atomic>
 
 #include "fldsim/block_sparse.hpp"
+#include "linalg/Block6Kernels.hpp"
 #include "linalg/GrowOnly.hpp"
 
 namespace fldsim {
@@ -59,6 +60,7 @@ std::int64_t BlockSparseMatrix::find(std::uint32_t i, std::uint32_t j) const {
 }
 
 void BlockSparseMatrix::multiply(const double* x, double* y) const {
+  using linalg::Acc6;
   const std::int64_t n = std::int64_t(diag_.size());
   if (omp_get_max_threads() == 1) {
     // One thread: each stored block is read once, y_i += A_ij x_j and y_j += A_ij^T x_i. Row j
@@ -66,14 +68,18 @@ void BlockSparseMatrix::multiply(const double* x, double* y) const {
     // operations, in the order, of the gather below (which reads every block twice).
     std::fill(y, y + 6 * n, 0.0);
     for (std::int64_t i = 0; i < n; ++i) {
-      const Eigen::Map<const Vec6> xi(x + 6 * i);
-      Eigen::Map<Vec6> yi(y + 6 * i);
-      yi.noalias() += diag_[i] * xi;
+      const Acc6 xi = Acc6::load(x + 6 * i);
+      Acc6 yi = Acc6::load(y + 6 * i);
+      linalg::accumulate_product<1>(yi, diag_[i].data(), x + 6 * i);
       for (std::int64_t k = row_start_[i]; k < row_start_[i + 1]; ++k) {
         const std::size_t j = col_[k];
-        yi.noalias() += values_[k] * Eigen::Map<const Vec6>(x + 6 * j);
-        Eigen::Map<Vec6>(y + 6 * j).noalias() += values_[k].transpose() * xi;
+        linalg::accumulate_product<1>(yi, values_[k].data(), x + 6 * j);
+        const Acc6 t = linalg::transposed_product(values_[k].data(), xi);
+        Acc6 yj = Acc6::load(y + 6 * j);
+        for (int p = 0; p < 3; ++p) yj.v[p] += t.v[p];
+        yj.store(y + 6 * j);
       }
+      yi.store(y + 6 * i);
     }
     return;
   }
@@ -81,13 +87,16 @@ void BlockSparseMatrix::multiply(const double* x, double* y) const {
   // row index, diagonal, upper part by increasing column), so y does not depend on the thread count.
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < n; ++i) {
-    Eigen::Map<Vec6> acc(y + 6 * i);
-    acc.setZero();
-    for (std::int64_t k = col_start_[i]; k < col_start_[i + 1]; ++k)
-      acc.noalias() += values_[by_col_[k]].transpose() * Eigen::Map<const Vec6>(x + 6 * by_col_row_[k]);
-    acc.noalias() += diag_[i] * Eigen::Map<const Vec6>(x + 6 * i);
+    Acc6 acc = Acc6::zero();
+    for (std::int64_t k = col_start_[i]; k < col_start_[i + 1]; ++k) {
+      const Acc6 t =
+          linalg::transposed_product(values_[by_col_[k]].data(), Acc6::load(x + 6 * by_col_row_[k]));
+      for (int p = 0; p < 3; ++p) acc.v[p] += t.v[p];
+    }
+    linalg::accumulate_product<1>(acc, diag_[i].data(), x + 6 * i);
     for (std::int64_t k = row_start_[i]; k < row_start_[i + 1]; ++k)
-      acc.noalias() += values_[k] * Eigen::Map<const Vec6>(x + 6 * std::size_t(col_[k]));
+      linalg::accumulate_product<1>(acc, values_[k].data(), x + 6 * std::size_t(col_[k]));
+    acc.store(y + 6 * i);
   }
 }
 
