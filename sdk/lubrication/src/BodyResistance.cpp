@@ -75,17 +75,18 @@ bool BodyResistance::update(const System& system, const NodePairList& pairs) {
     centred_[k].on = false;
     PairRows S;
     LubricationPair::rows(radii_[p.node_a], radii_[p.node_b], p.separation, mu, options_, S, c);
-    // Fixed-size products as lazy (coefficient) products: Eigen 3.4 otherwise sends these small
-    // shapes to its general blocked kernel, which dominated the assembly. A node at its body's
-    // centre (every sphere) has identity kinematics.
-    if (xa.isZero(0.0))
-      B.leftCols<6>() = S.leftCols<6>();
-    else
-      B.leftCols<6>() = S.leftCols<6>().lazyProduct(node_kinematics(xa));
-    if (xb.isZero(0.0))
-      B.rightCols<6>() = S.rightCols<6>();
-    else
-      B.rightCols<6>() = S.rightCols<6>().lazyProduct(node_kinematics(xb));
+    // B = S K per node, with K = [I -[x]x; 0 I] (node_kinematics): the translational columns are
+    // S's, the rotational ones S_w + S_u (-[x]x), 72 multiply-adds instead of the 288 of the full
+    // 8x6 by 6x6 product. Lazy (coefficient) products: Eigen 3.4 otherwise sends these small
+    // shapes to its general blocked kernel, which dominated the assembly. (The Gram blocks below
+    // stay general products: a closed form carried by K, four 3x3 products per block, measured
+    // slower than these vectorised 6x8x6 products, 14 % of a fused-dumbbell step against 12 %.)
+    B = S;
+    if (!xa.isZero(0.0))
+      B.middleCols<3>(3).noalias() += S.leftCols<3>().lazyProduct(node_kinematics(xa).topRightCorner<3, 3>());
+    if (!xb.isZero(0.0))
+      B.rightCols<3>().noalias() +=
+          S.middleCols<3>(6).lazyProduct(node_kinematics(xb).topRightCorner<3, 3>());
     if (p.weight != 1.0) B *= std::sqrt(p.weight);
     // Gram blocks, symmetrised so that R is symmetric to the last bit.
     const Mat6 ii = B.leftCols<6>().transpose().lazyProduct(B.leftCols<6>());
