@@ -1,5 +1,7 @@
 // The 6x6 block products of the CG solve and of IC(0)'s factorisation and sweeps, written out for the
-// compiler's two-wide double vectors (GCC/Clang vector extensions: SSE2 on x86-64, NEON on arm64).
+// compiler's two-wide double vectors (GCC/Clang vector extensions; SSE2 on x86-64, the only
+// target measured and tested: on a target with FMA, -ffp-contract would need to be off here for the
+// thread-count invariance below to be guaranteed).
 // Eigen's fixed-size products of 6x6 blocks leave the transposed product A^T x to six scalar
 // reductions and add every column of A x into one chain of dependent additions; these kernels
 // take about 20 % less time per block (bench/README.md, "Block kernels"). Core-private.
