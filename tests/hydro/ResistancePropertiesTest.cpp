@@ -300,47 +300,48 @@ TEST(ResistanceModel, FactorIsReusedWithinAStepAndNeverAcrossSteps) {
   for (std::size_t k = 0; k < F.size(); ++k) ASSERT_EQ(x_D[k], x_D_own[k]) << k;
 }
 
-// BodyResistance's two ways to the Gram blocks, the closed form of centred node pairs (spheres,
-// LubricationPair::centred_gram, the default) and the general products of the body rows
-// (set_centred_gram(false)), assembled into R_delta from the same pairs: spheres, and homonuclear
-// (c/a 0.2) and fused (c/a 1) dicolloids, whose off-centre nodes take the general products either
-// way (their rows S K, structured since 3 December, are what the comparison with the spheres'
-// closed form cannot see: BodyResistance.PairForcesConserveMomentum checks those); the default
-// options and LAMMPS's forms. Agreement to rounding (1e-13 of the largest entry), exact symmetry.
+// BodyResistance's two ways to the Gram blocks of spheres, the closed form of centred node pairs
+// (LubricationPair::centred_gram, the default) and the general products of the body rows
+// (set_centred_gram(false)), assembled into R_delta from the same pairs, with the default options
+// and LAMMPS's forms. Agreement to rounding (1e-13 of the largest entry), exact symmetry.
+// (Dicolloids' off-centre nodes take the general products either way, so comparing them here
+// would compare a path with itself; their structured rows S K are checked by
+// BodyResistance.PairForcesConserveMomentum: rigid motions excite no mode.)
 TEST(BodyResistance, ClosedFormGramBlocksEqualTheGeneralProducts) {
   int pairs = 0;
   for (const Config& setup : kSetups)
-    for (const bool lammps : {false, true})
-      for (const unsigned seed : {3u, 11u}) {
-        SCOPED_TRACE(setup.name);
-        System system(shape_of(setup), setup.n, setup.box, physics(1.0, 1.0, 0.3));
-        random_configuration(system, 0.01, seed);
-        LubricationOptions o;
-        if (lammps) {
-          o.pump = PumpForm::Lammps;
-          o.twist = false;
-          o.lever = Lever::Contact;
+    if (setup.c < 0)  // spheres
+      for (const bool lammps : {false, true})
+        for (const unsigned seed : {3u, 11u, 17u, 29u}) {
+          SCOPED_TRACE(setup.name);
+          System system(shape_of(setup), setup.n, setup.box, physics(1.0, 1.0, 0.3));
+          random_configuration(system, 0.01, seed);
+          LubricationOptions o;
+          if (lammps) {
+            o.pump = PumpForm::Lammps;
+            o.twist = false;
+            o.lever = Lever::Contact;
+          }
+          const NodePairList list = brute_force_pairs(system, o.cutoff);  // unit radii: the pair range
+          BodyResistance closed(o), general(o);
+          general.set_centred_gram(false);
+          closed.update(system, list);
+          general.update(system, list);
+          const auto matrix = [&](BodyResistance& lub) {
+            std::vector<std::pair<std::uint32_t, std::uint32_t>> upper;
+            lub.body_pairs(upper);
+            BlockSparseMatrix M;
+            M.set_pattern(system.size(), upper);
+            lub.bind(M);
+            lub.add_to(M);
+            return M.dense();
+          };
+          const Eigen::MatrixXd Ra = matrix(closed), Rb = matrix(general);
+          const double scale = Rb.cwiseAbs().maxCoeff();
+          ASSERT_GT(scale, 0.0);
+          EXPECT_LE((Ra - Rb).cwiseAbs().maxCoeff(), 1e-13 * scale);
+          EXPECT_EQ((Ra - Ra.transpose()).norm(), 0.0);
+          pairs += int(closed.size());
         }
-        const NodePairList list = brute_force_pairs(system, o.cutoff);  // unit radii: the pair range
-        BodyResistance closed(o), general(o);
-        general.set_centred_gram(false);
-        closed.update(system, list);
-        general.update(system, list);
-        const auto matrix = [&](BodyResistance& lub) {
-          std::vector<std::pair<std::uint32_t, std::uint32_t>> upper;
-          lub.body_pairs(upper);
-          BlockSparseMatrix M;
-          M.set_pattern(system.size(), upper);
-          lub.bind(M);
-          lub.add_to(M);
-          return M.dense();
-        };
-        const Eigen::MatrixXd Ra = matrix(closed), Rb = matrix(general);
-        const double scale = Rb.cwiseAbs().maxCoeff();
-        ASSERT_GT(scale, 0.0);
-        EXPECT_LE((Ra - Rb).cwiseAbs().maxCoeff(), 1e-13 * scale);
-        EXPECT_EQ((Ra - Ra.transpose()).norm(), 0.0);
-        pairs += int(closed.size());
-      }
   EXPECT_GT(pairs, 100);  // enough pairs to mean something
 }

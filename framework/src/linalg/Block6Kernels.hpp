@@ -29,7 +29,26 @@ struct Acc6 {
   void store(double* p) const {
     for (int k = 0; k < 3; ++k) __builtin_memcpy(p + 2 * k, &v[k], sizeof(Double2));
   }
+  Acc6& operator+=(const Acc6& o) {
+    for (int k = 0; k < 3; ++k) v[k] += o.v[k];
+    return *this;
+  }
+  Acc6& operator-=(const Acc6& o) {
+    for (int k = 0; k < 3; ++k) v[k] -= o.v[k];
+    return *this;
+  }
 };
+
+// y (6 doubles in memory) +=/-= t.
+template <int Sign>
+inline void add_to_memory(double* y, const Acc6& t) {
+  Acc6 acc = Acc6::load(y);
+  if constexpr (Sign > 0)
+    acc += t;
+  else
+    acc -= t;
+  acc.store(y);
+}
 
 // Column c, rows 2k and 2k+1 of a column-major 6x6 block of doubles or floats, as doubles.
 template <class Scalar>
@@ -71,12 +90,7 @@ inline Acc6 transposed_product(const Scalar* A, const Acc6& x) {
 
 // C -= A^T B for 6x6 column-major blocks of doubles: column by column, each A^T B_c as above.
 inline void subtract_transposed_product(double* C, const double* A, const double* B) {
-  for (int c = 0; c < 6; ++c) {
-    const Acc6 t = transposed_product(A, Acc6::load(B + 6 * c));
-    Acc6 col = Acc6::load(C + 6 * c);
-    for (int k = 0; k < 3; ++k) col.v[k] -= t.v[k];
-    col.store(C + 6 * c);
-  }
+  for (int c = 0; c < 6; ++c) add_to_memory<-1>(C + 6 * c, transposed_product(A, Acc6::load(B + 6 * c)));
 }
 
 }  // namespace fldsim::linalg

@@ -179,11 +179,8 @@ bool BlockIncompleteCholesky::factorize(const BlockSparseMatrix& A) {
 void BlockIncompleteCholesky::forward_row(std::size_t i, const double* r, double* z) const {
   using linalg::Acc6;
   Acc6 acc = Acc6::load(r + 6 * i);
-  for (std::int64_t c = col_start_[i]; c < col_start_[i + 1]; ++c) {
-    const Acc6 t =
-        linalg::transposed_product(lower_f_[c].data(), Acc6::load(z + 6 * std::size_t(by_col_row_[c])));
-    for (int p = 0; p < 3; ++p) acc.v[p] -= t.v[p];
-  }
+  for (std::int64_t c = col_start_[i]; c < col_start_[i + 1]; ++c)
+    acc -= linalg::transposed_product(lower_f_[c].data(), Acc6::load(z + 6 * std::size_t(by_col_row_[c])));
   pivot_times(i, acc, z + 6 * i);
 }
 
@@ -215,13 +212,9 @@ void BlockIncompleteCholesky::apply(const double* r, double* z) const {
     for (std::int64_t i = 0; i < n; ++i) {
       pivot_times(std::size_t(i), linalg::Acc6::load(z + 6 * i), z + 6 * i);
       const linalg::Acc6 y = linalg::Acc6::load(z + 6 * i);
-      for (std::int64_t a = row_start_[i]; a < row_start_[i + 1]; ++a) {
-        double* zj = z + 6 * std::size_t(col_[a]);
-        const linalg::Acc6 t = linalg::transposed_product(upper_f_[a].data(), y);
-        linalg::Acc6 acc = linalg::Acc6::load(zj);
-        for (int p = 0; p < 3; ++p) acc.v[p] -= t.v[p];
-        acc.store(zj);
-      }
+      for (std::int64_t a = row_start_[i]; a < row_start_[i + 1]; ++a)
+        linalg::add_to_memory<-1>(z + 6 * std::size_t(col_[a]),
+                                  linalg::transposed_product(upper_f_[a].data(), y));
     }
     for (std::int64_t i = n; i-- > 0;) backward_row(std::size_t(i), z);
     return;

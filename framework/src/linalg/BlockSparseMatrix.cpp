@@ -74,10 +74,7 @@ void BlockSparseMatrix::multiply(const double* x, double* y) const {
       for (std::int64_t k = row_start_[i]; k < row_start_[i + 1]; ++k) {
         const std::size_t j = col_[k];
         linalg::accumulate_product<1>(yi, values_[k].data(), x + 6 * j);
-        const Acc6 t = linalg::transposed_product(values_[k].data(), xi);
-        Acc6 yj = Acc6::load(y + 6 * j);
-        for (int p = 0; p < 3; ++p) yj.v[p] += t.v[p];
-        yj.store(y + 6 * j);
+        linalg::add_to_memory<1>(y + 6 * j, linalg::transposed_product(values_[k].data(), xi));
       }
       yi.store(y + 6 * i);
     }
@@ -88,11 +85,8 @@ void BlockSparseMatrix::multiply(const double* x, double* y) const {
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < n; ++i) {
     Acc6 acc = Acc6::zero();
-    for (std::int64_t k = col_start_[i]; k < col_start_[i + 1]; ++k) {
-      const Acc6 t =
-          linalg::transposed_product(values_[by_col_[k]].data(), Acc6::load(x + 6 * by_col_row_[k]));
-      for (int p = 0; p < 3; ++p) acc.v[p] += t.v[p];
-    }
+    for (std::int64_t k = col_start_[i]; k < col_start_[i + 1]; ++k)
+      acc += linalg::transposed_product(values_[by_col_[k]].data(), Acc6::load(x + 6 * by_col_row_[k]));
     linalg::accumulate_product<1>(acc, diag_[i].data(), x + 6 * i);
     for (std::int64_t k = row_start_[i]; k < row_start_[i + 1]; ++k)
       linalg::accumulate_product<1>(acc, values_[k].data(), x + 6 * std::size_t(col_[k]));
