@@ -269,12 +269,19 @@ TEST(LubricationPair, ContactLeverIsTheRadiusAndOnlyTheCentreLeverKeepsRigidRota
   EXPECT_NEAR(f.segment<3>(6).norm(), c.shear * (r - 2.0), 1e-12 * c.shear);
 }
 
-// The closed-form Gram blocks of a centred pair (BodyResistance's path for spheres) against the
-// products of the rows they replace: every option set (pump, twist, lever, taper), unequal radii,
-// gaps from the floor to the taper, random directions; agreement to rounding (1e-14 of the pair's
-// largest entry), exact symmetry of the diagonal blocks.
-TEST(LubricationPair, CentredGramEqualsTheRowProducts) {
-  std::mt19937_64 rng(21);
+namespace {
+// A centred pair as BodyResistance's sphere path sees it, for the closed-form tests below.
+struct CentredCase {
+  Vec3 r;                     // separation x_j - x_i
+  PairRows S;                 // rows() at r
+  LubricationCoefficients c;  // the coefficients rows() used
+  double w;                   // visibility weight
+};
+
+// Every option set (pump, twist, lever, taper), equal and unequal radii, gaps from below the
+// floor to the taper, random directions, weights 1 and 0.37: 640 cases, each passed to check.
+template <class Check>
+int for_centred_cases(std::mt19937_64& rng, Check check) {
   std::uniform_real_distribution<double> u(-1.0, 1.0), gap(0.0, 0.49);
   int checked = 0;
   for (const PumpForm pump : {PumpForm::JeffreyOnishi, PumpForm::Lammps})
@@ -293,22 +300,58 @@ TEST(LubricationPair, CentredGramEqualsTheRowProducts) {
               Vec3 d(u(rng), u(rng), u(rng));
               d.normalize();
               const double h = trial == 0 ? 1e-4 : gap(rng);  // below the floor once
-              const Vec3 r = (a_i + a_j + h * abar) * d;
-              PairRows S;
-              LubricationCoefficients c;
-              LubricationPair::rows(a_i, a_j, r, 0.3, o, S, c);
-              const double w = trial % 3 == 0 ? 0.37 : 1.0;
-              Mat6 ii, jj, ij;
-              LubricationPair::centred_gram(r / r.norm(), c, w, ii, jj, ij);
-              const Mat12 G = w * S.transpose() * S;
-              const double scale = G.cwiseAbs().maxCoeff();
-              ASSERT_GT(scale, 0.0);
-              EXPECT_LE((ii - G.topLeftCorner<6, 6>()).cwiseAbs().maxCoeff(), 1e-14 * scale);
-              EXPECT_LE((jj - G.bottomRightCorner<6, 6>()).cwiseAbs().maxCoeff(), 1e-14 * scale);
-              EXPECT_LE((ij - G.topRightCorner<6, 6>()).cwiseAbs().maxCoeff(), 1e-14 * scale);
-              EXPECT_EQ(ii, ii.transpose());
-              EXPECT_EQ(jj, jj.transpose());
+              CentredCase k;
+              k.r = (a_i + a_j + h * abar) * d;
+              LubricationPair::rows(a_i, a_j, k.r, 0.3, o, k.S, k.c);
+              k.w = trial % 3 == 0 ? 0.37 : 1.0;
+              check(k);
               ++checked;
             }
+  return checked;
+}
+}  // namespace
+
+// The closed-form Gram blocks of a centred pair (BodyResistance's path for spheres) against the
+// products of the rows they replace; agreement to rounding (1e-14 of the pair's largest entry),
+// exact symmetry of the diagonal blocks.
+TEST(LubricationPair, CentredGramEqualsTheRowProducts) {
+  std::mt19937_64 rng(21);
+  const int checked = for_centred_cases(rng, [](const CentredCase& k) {
+    Mat6 ii, jj, ij;
+    LubricationPair::centred_gram(k.r / k.r.norm(), k.c, k.w, ii, jj, ij);
+    const Mat12 G = k.w * k.S.transpose() * k.S;
+    const double scale = G.cwiseAbs().maxCoeff();
+    ASSERT_GT(scale, 0.0);
+    EXPECT_LE((ii - G.topLeftCorner<6, 6>()).cwiseAbs().maxCoeff(), 1e-14 * scale);
+    EXPECT_LE((jj - G.bottomRightCorner<6, 6>()).cwiseAbs().maxCoeff(), 1e-14 * scale);
+    EXPECT_LE((ij - G.topRightCorner<6, 6>()).cwiseAbs().maxCoeff(), 1e-14 * scale);
+    EXPECT_EQ(ii, ii.transpose());
+    EXPECT_EQ(jj, jj.transpose());
+  });
+  EXPECT_EQ(checked, 640);
+}
+
+// The closed-form pair wrench -w S^T S v and Brownian wrench sqrt(w) S^T beta of a centred pair
+// (BodyResistance's path for spheres: strain forces, stresslets, Brownian forces) against the
+// products of the rows they replace, random velocities and normals; agreement to rounding (1e-14
+// of the largest term of the product).
+TEST(LubricationPair, CentredWrenchAndNoiseEqualTheRowProducts) {
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::normal_distribution<double> normal;
+  const int checked = for_centred_cases(rng, [&](const CentredCase& k) {
+    using Modes = Eigen::Matrix<double, LubricationPair::kRows, 1>;
+    const PairRows Sw = std::sqrt(k.w) * k.S;
+    const Vec12 v = Vec12::NullaryExpr([&]() { return u(rng); });
+    const Modes beta = Modes::NullaryExpr([&]() { return normal(rng); });
+    const Vec3 d = k.r / k.r.norm();
+    const Vec12 wrench = LubricationPair::centred_wrench(d, k.c, k.w, v);
+    const double scale_w = (Sw.transpose() * Sw).cwiseAbs().maxCoeff() * v.cwiseAbs().maxCoeff();
+    ASSERT_GT(scale_w, 0.0);
+    EXPECT_LE((wrench + Sw.transpose() * (Sw * v)).cwiseAbs().maxCoeff(), 1e-14 * scale_w);
+    const Vec12 noise = LubricationPair::centred_noise(d, k.c, k.w, beta);
+    const double scale_n = Sw.cwiseAbs().maxCoeff() * beta.cwiseAbs().maxCoeff();
+    EXPECT_LE((noise - Sw.transpose() * beta).cwiseAbs().maxCoeff(), 1e-14 * scale_n);
+  });
   EXPECT_EQ(checked, 640);
 }

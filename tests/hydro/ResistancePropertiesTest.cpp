@@ -300,14 +300,16 @@ TEST(ResistanceModel, FactorIsReusedWithinAStepAndNeverAcrossSteps) {
   for (std::size_t k = 0; k < F.size(); ++k) ASSERT_EQ(x_D[k], x_D_own[k]) << k;
 }
 
-// BodyResistance's two ways to the Gram blocks of spheres, the closed form of centred node pairs
-// (LubricationPair::centred_gram, the default) and the general products of the body rows
-// (set_centred_gram(false)), assembled into R_delta from the same pairs, with the default options
-// and LAMMPS's forms. Agreement to rounding (1e-13 of the largest entry), exact symmetry.
+namespace {
+// Sphere pairs two ways: the closed forms of centred node pairs (LubricationPair::centred_*, the
+// default) and the general products of the body rows (set_centred_gram(false)), from the same
+// pairs, with the default options and LAMMPS's forms; calls check(closed, general, system) for
+// each of 2 x 4 configurations and returns the number of pairs seen.
 // (Dicolloids' off-centre nodes take the general products either way, so comparing them here
 // would compare a path with itself; their structured rows S K are checked by
 // BodyResistance.PairForcesConserveMomentum: rigid motions excite no mode.)
-TEST(BodyResistance, ClosedFormGramBlocksEqualTheGeneralProducts) {
+template <class Check>
+int for_sphere_pairs_two_ways(Check check) {
   int pairs = 0;
   for (const Config& setup : kSetups)
     if (setup.c < 0)  // spheres
@@ -327,21 +329,82 @@ TEST(BodyResistance, ClosedFormGramBlocksEqualTheGeneralProducts) {
           general.set_centred_gram(false);
           closed.update(system, list);
           general.update(system, list);
-          const auto matrix = [&](BodyResistance& lub) {
-            std::vector<std::pair<std::uint32_t, std::uint32_t>> upper;
-            lub.body_pairs(upper);
-            BlockSparseMatrix M;
-            M.set_pattern(system.size(), upper);
-            lub.bind(M);
-            lub.add_to(M);
-            return M.dense();
-          };
-          const Eigen::MatrixXd Ra = matrix(closed), Rb = matrix(general);
-          const double scale = Rb.cwiseAbs().maxCoeff();
-          ASSERT_GT(scale, 0.0);
-          EXPECT_LE((Ra - Rb).cwiseAbs().maxCoeff(), 1e-13 * scale);
-          EXPECT_EQ((Ra - Ra.transpose()).norm(), 0.0);
+          check(closed, general, system);
           pairs += int(closed.size());
         }
+  return pairs;
+}
+
+double max_abs(const std::vector<double>& v) {
+  double m = 0.0;
+  for (const double x : v) m = std::max(m, std::abs(x));
+  return m;
+}
+}  // namespace
+
+// R_delta of spheres from the closed-form Gram blocks against the general products: agreement to
+// rounding (1e-13 of the largest entry), exact symmetry.
+TEST(BodyResistance, ClosedFormGramBlocksEqualTheGeneralProducts) {
+  const int pairs =
+      for_sphere_pairs_two_ways([](BodyResistance& closed, BodyResistance& general, const System& system) {
+        const auto matrix = [&](BodyResistance& lub) {
+          std::vector<std::pair<std::uint32_t, std::uint32_t>> upper;
+          lub.body_pairs(upper);
+          BlockSparseMatrix M;
+          M.set_pattern(system.size(), upper);
+          lub.bind(M);
+          lub.add_to(M);
+          return M.dense();
+        };
+        const Eigen::MatrixXd Ra = matrix(closed), Rb = matrix(general);
+        const double scale = Rb.cwiseAbs().maxCoeff();
+        ASSERT_GT(scale, 0.0);
+        EXPECT_LE((Ra - Rb).cwiseAbs().maxCoeff(), 1e-13 * scale);
+        EXPECT_EQ((Ra - Ra.transpose()).norm(), 0.0);
+      });
   EXPECT_GT(pairs, 100);  // enough pairs to mean something
+}
+
+// The strain forces R_FE:E, the pairwise Brownian forces and the stresslet sum of spheres from
+// the closed-form pair wrenches against the general row products, summed over the same pairs:
+// agreement to rounding (1e-13 of the largest entry), and the test's rows(k) equal to the rows the
+// general path keeps.
+TEST(BodyResistance, ClosedFormPairForcesEqualTheGeneralProducts) {
+  const int pairs =
+      for_sphere_pairs_two_ways([](BodyResistance& closed, BodyResistance& general, const System& system) {
+        const std::size_t n6 = 6 * system.size();
+        Eigen::Matrix3d E;
+        E << 0.1, 0.5, -0.2, 0.5, -0.3, 0.05, -0.2, 0.05, 0.2;  // symmetric, traceless
+        std::vector<double> fa(n6, 0.0), fb(n6, 0.0);
+        closed.add_strain_force(E, fa.data());
+        general.add_strain_force(E, fb.data());
+        std::vector<double> diff(n6);
+        for (std::size_t k = 0; k < n6; ++k) diff[k] = fa[k] - fb[k];
+        ASSERT_GT(max_abs(fb), 0.0);
+        EXPECT_LE(max_abs(diff), 1e-13 * max_abs(fb)) << "strain force";
+
+        const RandomStream noise(99, RandomPurpose::PairNoise, 7);
+        std::fill(fa.begin(), fa.end(), 0.0);
+        std::fill(fb.begin(), fb.end(), 0.0);
+        closed.add_brownian(noise, 1, 1.7, fa.data());
+        general.add_brownian(noise, 1, 1.7, fb.data());
+        for (std::size_t k = 0; k < n6; ++k) diff[k] = fa[k] - fb[k];
+        ASSERT_GT(max_abs(fb), 0.0);
+        EXPECT_LE(max_abs(diff), 1e-13 * max_abs(fb)) << "Brownian force";
+
+        std::mt19937_64 rng(5);
+        std::uniform_real_distribution<double> u(-1.0, 1.0);
+        std::vector<double> dU(n6);
+        for (double& x : dU) x = u(rng);
+        const Eigen::Matrix3d Sa = closed.stresslet_sum(E, dU.data()),
+                              Sb = general.stresslet_sum(E, dU.data());
+        ASSERT_GT(Sb.cwiseAbs().maxCoeff(), 0.0);
+        EXPECT_LE((Sa - Sb).cwiseAbs().maxCoeff(), 1e-13 * Sb.cwiseAbs().maxCoeff()) << "stresslet";
+
+        for (std::size_t k = 0; k < closed.size(); ++k)
+          ASSERT_LE((closed.rows(k) - general.rows(k)).cwiseAbs().maxCoeff(),
+                    1e-14 * general.rows(k).cwiseAbs().maxCoeff())
+              << "rows of pair " << k;
+      });
+  EXPECT_GT(pairs, 100);
 }

@@ -55,6 +55,7 @@ bool BodyResistance::update(const System& system, const NodePairList& pairs) {
   }
 
   const double mu = system.physics().viscosity;
+  mu_ = mu;
 #pragma omp parallel for schedule(static)
   for (std::int64_t k = 0; k < std::int64_t(accepted_.size()); ++k) {
     const Accepted& p = accepted_[k];
@@ -63,13 +64,13 @@ bool BodyResistance::update(const System& system, const NodePairList& pairs) {
     const Vec3& xb = offsets[std::size_t(p.body_j) * m + p.node_b];
     BodyRows& B = rows_[k];
     if (centred_gram_ && xa.isZero(0.0) && xb.isZero(0.0)) {
-      // Both nodes at their bodies' centres (spheres): B = sqrt(w) S (written in place), and the
-      // Gram blocks in closed form (instead of three 6 x 8 x 6 products), evaluated by add_to from
-      // the direction and coefficients kept here: three stored 6 x 6 blocks per pair would cost
-      // more memory traffic than the arithmetic.
-      LubricationPair::rows(radii_[p.node_a], radii_[p.node_b], p.separation, mu, options_, B, c);
-      if (p.weight != 1.0) B *= std::sqrt(p.weight);
-      centred_[k] = {p.separation / p.separation.norm(), c, p.weight, true};
+      // Both nodes at their bodies' centres (spheres): the pair is its direction and coefficients.
+      // Its Gram blocks (add_to), strain force, Brownian force and stresslet follow from them in
+      // closed form (LubricationPair::centred_*), cheaper than forming and streaming the 8 x 12
+      // rows, let alone three 6 x 6 blocks per pair.
+      const double dist = p.separation.norm();
+      c = LubricationPair::coefficients(radii_[p.node_a], radii_[p.node_b], dist, mu, options_);
+      centred_[k] = {p.separation / dist, c, p.weight, true};
       continue;
     }
     centred_[k].on = false;
@@ -134,11 +135,28 @@ void BodyResistance::sum_per_body(double* out) const {
   }
 }
 
+BodyResistance::BodyRows BodyResistance::rows(std::size_t k) const {
+  const Centred& c = centred_[k];
+  if (!c.on) return rows_[k];
+  PairRows S;
+  LubricationCoefficients unused;
+  const Accepted& p = accepted_[k];
+  LubricationPair::rows(radii_[p.node_a], radii_[p.node_b], p.separation, mu_, options_, S, unused);
+  if (p.weight != 1.0) S *= std::sqrt(p.weight);
+  return S;
+}
+
 void BodyResistance::add_strain_force(const Eigen::Matrix3d& E, double* rhs) {
 #pragma omp parallel for schedule(static)
   for (std::int64_t k = 0; k < std::int64_t(accepted_.size()); ++k) {
     // Mode velocities of the ambient flow: only the relative velocity E L_ij of node j enters
     // (the rigid part Omega_inf cancels in every mode).
+    if (const Centred& c = centred_[k]; c.on) {
+      Eigen::Matrix<double, 12, 1> v = Eigen::Matrix<double, 12, 1>::Zero();
+      v.segment<3>(6) = E * accepted_[k].arm;
+      pair_force_[k] = LubricationPair::centred_wrench(c.d, c.c, c.weight, v);
+      continue;
+    }
     const Eigen::Matrix<double, LubricationPair::kRows, 1> e =
         rows_[k].middleCols<3>(6).lazyProduct(E * accepted_[k].arm);
     pair_force_[k] = -(rows_[k].transpose().lazyProduct(e));
@@ -161,6 +179,10 @@ void BodyResistance::add_brownian(const RandomStream& noise, std::size_t nodes_p
       beta[2 * q] = g[0];
       beta[2 * q + 1] = g[1];
     }
+    if (const Centred& c = centred_[k]; c.on) {
+      pair_force_[k] = scale * LubricationPair::centred_noise(c.d, c.c, c.weight, beta);
+      continue;
+    }
     pair_force_[k] = scale * rows_[k].transpose().lazyProduct(beta);
   }
   sum_per_body(FB);
@@ -170,13 +192,21 @@ Eigen::Matrix3d BodyResistance::stresslet_sum(const Eigen::Matrix3d& E, const do
   Eigen::Matrix3d S = Eigen::Matrix3d::Zero();
   for (std::size_t k = 0; k < accepted_.size(); ++k) {
     const Accepted& p = accepted_[k];
-    const BodyRows& B = rows_[k];
-    const Eigen::Matrix<double, LubricationPair::kRows, 1> y =
-        B.leftCols<6>().lazyProduct(Eigen::Map<const Vec6>(dU + 6 * std::size_t(p.body_i))) +
-        B.rightCols<6>().lazyProduct(Eigen::Map<const Vec6>(dU + 6 * std::size_t(p.body_j))) +
-        B.middleCols<3>(6).lazyProduct(E * p.arm);
+    const Eigen::Map<const Vec6> dUi(dU + 6 * std::size_t(p.body_i)), dUj(dU + 6 * std::size_t(p.body_j));
     // Hydrodynamic force of the pair on node j (f = -S^T S v, translational rows of node j).
-    const Vec3 Fj = -(B.middleCols<3>(6).transpose().lazyProduct(y));
+    Vec3 Fj;
+    if (const Centred& c = centred_[k]; c.on) {
+      Eigen::Matrix<double, 12, 1> v;
+      v << dUi, dUj;
+      v.segment<3>(6) += E * p.arm;
+      Fj = LubricationPair::centred_wrench(c.d, c.c, c.weight, v).segment<3>(6);
+    } else {
+      const BodyRows& B = rows_[k];
+      const Eigen::Matrix<double, LubricationPair::kRows, 1> y = B.leftCols<6>().lazyProduct(dUi) +
+                                                                 B.rightCols<6>().lazyProduct(dUj) +
+                                                                 B.middleCols<3>(6).lazyProduct(E * p.arm);
+      Fj = -(B.middleCols<3>(6).transpose().lazyProduct(y));
+    }
     // Moment of the equal and opposite pair forces: -L_ij (x) F_j, with the same arm as the strain
     // forcing so that R_SU = R_FE^T (about the two body centres for the Centre arm).
     // Sign: sigma = -p I + 2 mu E + (1/V) sum S; two bodies approaching along the compressional

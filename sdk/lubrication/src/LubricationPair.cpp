@@ -128,6 +128,38 @@ void LubricationPair::centred_gram(const Vec3& d, const LubricationCoefficients&
   ij.bottomRightCorner<3, 3>() = (sh * li * lj - pu) * P - tw * dd;
 }
 
+Eigen::Matrix<double, 12, 1> LubricationPair::centred_wrench(const Vec3& d, const LubricationCoefficients& c,
+                                                             double w,
+                                                             const Eigen::Matrix<double, 12, 1>& v) {
+  const Vec3 du = v.segment<3>(6) - v.segment<3>(0);
+  const Vec3 wi = v.segment<3>(3), wj = v.segment<3>(9), dw = wi - wj;
+  const double d_du = d.dot(du), d_dw = d.dot(dw);
+  // Tangential parts: P du = du - (d.du) d; d x w is tangential already.
+  const Vec3 t = (w * c.shear) * (du - d_du * d + c.lever_i * d.cross(wi) + c.lever_j * d.cross(wj));
+  const Vec3 f = (w * c.squeeze * d_du) * d + t;  // (S^T S v) on u_j; minus it on u_i
+  const Vec3 rot = (w * c.pump) * (dw - d_dw * d) + (w * c.twist * d_dw) * d;
+  const Vec3 dxt = d.cross(t);
+  Eigen::Matrix<double, 12, 1> out;
+  out << f, c.lever_i * dxt - rot, -f, c.lever_j * dxt + rot;  // -S^T S v
+  return out;
+}
+
+Eigen::Matrix<double, 12, 1> LubricationPair::centred_noise(const Vec3& d, const LubricationCoefficients& c,
+                                                            double w,
+                                                            const Eigen::Matrix<double, kRows, 1>& beta) {
+  // Square roots taken as rows() takes them (sqrt(c_m), then sqrt(w)), so that both paths scale alike.
+  const double sw = w == 1.0 ? 1.0 : std::sqrt(w);
+  const double s_sq = std::sqrt(c.squeeze) * sw, s_sh = std::sqrt(c.shear) * sw;
+  const double s_pu = std::sqrt(c.pump) * sw, s_tw = std::sqrt(c.twist) * sw;
+  const Vec3 b = beta.segment<3>(1), p = beta.segment<3>(4);
+  const Vec3 u = (s_sq * beta[0]) * d + s_sh * (b - d.dot(b) * d);
+  const Vec3 rot = s_pu * (p - d.dot(p) * d) + (s_tw * beta[7]) * d;
+  const Vec3 dxb = s_sh * d.cross(b);
+  Eigen::Matrix<double, 12, 1> out;
+  out << -u, rot - c.lever_i * dxb, u, -c.lever_j * dxb - rot;
+  return out;
+}
+
 void LubricationPair::rows(double a_i, double a_j, const Vec3& r, double mu,
                            const LubricationOptions& options, PairRows& S, LubricationCoefficients& c) {
   const double dist = r.norm();

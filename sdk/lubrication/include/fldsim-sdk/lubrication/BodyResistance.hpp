@@ -3,7 +3,10 @@
 //     S_i = S[:, 0:6] K(x_a),  S_j = S[:, 6:12] K(x_b),
 // and from them fills R_delta = sum_p [S_i S_j]^T [S_i S_j] into a BlockSparseMatrix, the
 // R_FE:E_inf right-hand side, the pairwise Brownian forces sum_p B_p beta_p (B_p = [S_i S_j]^T)
-// and the pair stresslets. A pair's visibility weight w scales its rows by sqrt(w), hence its
+// and the pair stresslets. Pairs of nodes at their bodies' centres (spheres) keep only their
+// direction and coefficients and take all of these in closed form (LubricationPair::centred_gram,
+// centred_wrench, centred_noise), equal to the row products to rounding (tests/hydro/
+// ResistancePropertiesTest.cpp). A pair's visibility weight w scales its rows by sqrt(w), hence its
 // resistance and stresslet by w and its Brownian force by sqrt(w) (fluctuation-dissipation kept). Pair work
 // is done in parallel into per-pair buffers and then summed per body in pair order, so results do not depend
 // on the thread count.
@@ -51,11 +54,12 @@ class BodyResistance {
   // For tests and benchmarks: false evaluates the Gram blocks of centred node pairs by the general
   // products (the closed form LubricationPair::centred_gram is the default).
   void set_centred_gram(bool on) { centred_gram_ = on; }
-  // For tests: body indices and body-level rows [S_i S_j] (8 x 12) of accepted pair k.
+  // For tests: body indices and body-level rows [S_i S_j] (8 x 12) of accepted pair k (formed
+  // here for centred pairs, which keep only their direction and coefficients).
   std::pair<std::uint32_t, std::uint32_t> bodies(std::size_t k) const {
     return {accepted_[k].body_i, accepted_[k].body_j};
   }
-  const Eigen::Matrix<double, LubricationPair::kRows, 12>& rows(std::size_t k) const { return rows_[k]; }
+  Eigen::Matrix<double, LubricationPair::kRows, 12> rows(std::size_t k) const;
 
  private:
   struct Accepted {
@@ -78,7 +82,7 @@ class BodyResistance {
   LubricationOptions options_;
   std::size_t bodies_ = 0;
   std::vector<Accepted> accepted_, candidates_;
-  std::vector<BodyRows> rows_;
+  std::vector<BodyRows> rows_;  // pairs with an off-centre node only (centred_[k].on false)
   std::vector<Mat6> block_ii_, block_jj_, block_ij_;
   // Pairs of centred nodes: their Gram blocks come from LubricationPair::centred_gram in add_to.
   struct Centred {
@@ -90,6 +94,7 @@ class BodyResistance {
   std::vector<Centred> centred_;
   std::vector<Eigen::Matrix<double, 12, 1>> pair_force_;  // scratch: per-pair body wrenches
   std::vector<double> radii_;
+  double mu_ = 0.0;  // viscosity of the last update (rows() of centred pairs)
   bool centred_gram_ = true;
 };
 

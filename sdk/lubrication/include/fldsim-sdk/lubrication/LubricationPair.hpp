@@ -90,6 +90,20 @@ class LubricationPair {
   // symmetric (tests/hydro/LubricationPairTest.cpp).
   static void centred_gram(const Vec3& d, const LubricationCoefficients& c, double w, Mat6& ii, Mat6& jj,
                            Mat6& ij);
+  // -w S^T S v for centred nodes, the pair's wrench (f_i, t_i, f_j, t_j) for node velocities
+  // v = (u_i, w_i, u_j, w_j), from the coefficients alone. With du = u_j - u_i, dw = w_i - w_j and
+  // the tangential t = c_sh (P du + l_i d x w_i + l_j d x w_j):
+  //   S^T S v = (-(c_sq (d.du) d + t),  -l_i d x t + c_pu P dw + c_tw (d.dw) d,
+  //                c_sq (d.du) d + t,   -l_j d x t - c_pu P dw - c_tw (d.dw) d).
+  // The strain force (v = (0, 0, E L, 0)) and the pair stresslets of spheres use it.
+  static Eigen::Matrix<double, 12, 1> centred_wrench(const Vec3& d, const LubricationCoefficients& c,
+                                                     double w, const Eigen::Matrix<double, 12, 1>& v);
+  // sqrt(w) S^T beta for centred nodes (the pair's Brownian wrench for the mode normals beta):
+  // with s_m = sqrt(w c_m), b = beta[1..3], p = beta[4..6],
+  //   (-s_sq beta_0 d - s_sh P b,  -s_sh l_i d x b + s_pu P p + s_tw beta_7 d,
+  //     s_sq beta_0 d + s_sh P b,  -s_sh l_j d x b - s_pu P p - s_tw beta_7 d).
+  static Eigen::Matrix<double, 12, 1> centred_noise(const Vec3& d, const LubricationCoefficients& c, double w,
+                                                    const Eigen::Matrix<double, kRows, 1>& beta);
 };
 
 }  // namespace fldsim::hydro
