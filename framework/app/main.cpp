@@ -10,6 +10,7 @@
 #include <variant>
 #include <vector>
 
+#include "SweepCommand.hpp"
 #include "config/RunCheck.hpp"
 #include "fldsim/api.hpp"
 #include "fldsim/error.hpp"
@@ -22,7 +23,6 @@
 #include "plugins/PluginRegistry.hpp"
 #include "run/Experiment.hpp"
 #include "run/RunExperiment.hpp"
-#include "SweepCommand.hpp"
 #include "run/Simulation.hpp"
 
 namespace {
@@ -140,6 +140,8 @@ int cmd_run(const std::vector<std::string>& args, bool check_only) {
     const std::string& a = args[i];
     auto value = [&](const char* what) -> std::string {
       if (i + 1 >= args.size()) throw fldsim::ConfigError(std::string(a) + ": expected " + what);
+      // An empty file name (e.g. an unset shell variable) would otherwise mean "not given".
+      if (args[i + 1].empty()) throw fldsim::ConfigError(std::string(a) + ": expected " + what + ", got ''");
       return args[++i];
     };
     if (is_help(a)) {
@@ -188,9 +190,12 @@ int cmd_plugins(const std::vector<std::string>& args) {
       std::cout << kPluginsHelp;
       return 0;
     }
-    if (args[i] == "--path" && i + 1 < args.size())
+    if (args[i] == "--path" && i + 1 < args.size()) {
       extra.push_back(args[++i]);
-    else
+      std::error_code ec;
+      if (!std::filesystem::is_directory(extra.back(), ec))
+        std::cerr << "warning: --path " << extra.back() << ": not a directory (ignored)\n";
+    } else
       return usage_error("unknown argument " + args[i], kPluginsHelp);
   }
   fldsim::PluginRegistry registry(fldsim::PluginRegistry::search_path(extra, "."));

@@ -462,6 +462,11 @@ TEST_F(Corpus, CommandLine) {
   cli("-o without a value", {"run", "in.yaml", "-o"}, "^-o: expected a file name");
   cli("--set without a value", {"check", "in.yaml", "--set"}, "^--set: expected KEY=VALUE");
   cli("--resume without a value", {"run", "in.yaml", "--resume"}, "^--resume: expected a checkpoint file");
+  // An empty value (an unset shell variable) is not "not given": it used to run to the
+  // experiment's own output (-o) or start afresh (--resume) without a word.
+  cli("-o with an empty value", {"run", "in.yaml", "-o", ""}, "^-o: expected a file name, got ''");
+  cli("--resume with an empty value", {"check", "in.yaml", "--resume", ""},
+      "^--resume: expected a checkpoint file, got ''");
   cli("--set without =", {"check", "in.yaml", "--set", "run.dt"}, "^--set run\\.dt: expected KEY=VALUE");
   cli("--set empty key", {"check", "in.yaml", "--set", "=3"}, "^--set =3: expected KEY=VALUE");
   cli("--set into a value", {"check", "in.yaml", "--set", "run.dt.x=1"},
@@ -501,6 +506,7 @@ TEST_F(Corpus, CommandLine) {
       "^fldsim: error: in\\.yaml: cannot read the result file: not an HDF5 file");
   cases.back().exit_code = 1;
   cli("plugins with an unknown option", {"plugins", "--bogus"}, "^fldsim: unknown argument --bogus");
+
   {
     Case c;
     c.name = "-o is a directory";
@@ -529,6 +535,19 @@ TEST_F(Corpus, CommandLine) {
     cases.push_back(c);
   }
   run_all("command line", cases);
+}
+
+// A --path that is not a directory is named in a warning (the listing goes on without it).
+TEST(CommandLineWarnings, PluginsPathThatIsNotADirectory) {
+  const fs::path dir = fs::temp_directory_path() / "fldsim_corpus_plugins_path";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  corpus::Case c;
+  c.args = {"plugins", "--path", "missing-dir"};
+  const corpus::Outcome o = corpus::run_case(c, dir);
+  EXPECT_EQ(o.exit_code, 0);
+  EXPECT_NE(o.err.find("warning: --path missing-dir: not a directory (ignored)"), std::string::npos) << o.err;
+  fs::remove_all(dir);
 }
 
 TEST_F(Corpus, ResourcesAndFeasibility) {
