@@ -506,7 +506,6 @@ TEST_F(Corpus, CommandLine) {
       "^fldsim: error: in\\.yaml: cannot read the result file: not an HDF5 file");
   cases.back().exit_code = 1;
   cli("plugins with an unknown option", {"plugins", "--bogus"}, "^fldsim: unknown argument --bogus");
-
   {
     Case c;
     c.name = "-o is a directory";

@@ -55,14 +55,12 @@ bool BodyResistance::update(const System& system, const NodePairList& pairs) {
   }
 
   const double mu = system.physics().viscosity;
-  mu_ = mu;
 #pragma omp parallel for schedule(static)
   for (std::int64_t k = 0; k < std::int64_t(accepted_.size()); ++k) {
     const Accepted& p = accepted_[k];
     LubricationCoefficients c;
     const Vec3& xa = offsets[std::size_t(p.body_i) * m + p.node_a];
     const Vec3& xb = offsets[std::size_t(p.body_j) * m + p.node_b];
-    BodyRows& B = rows_[k];
     if (centred_gram_ && xa.isZero(0.0) && xb.isZero(0.0)) {
       // Both nodes at their bodies' centres (spheres): the pair is its direction and coefficients.
       // Its Gram blocks (add_to), strain force, Brownian force and stresslet follow from them in
@@ -74,6 +72,7 @@ bool BodyResistance::update(const System& system, const NodePairList& pairs) {
       continue;
     }
     centred_[k].on = false;
+    BodyRows& B = rows_[k];
     PairRows S;
     LubricationPair::rows(radii_[p.node_a], radii_[p.node_b], p.separation, mu, options_, S, c);
     // B = S K per node, with K = [I -[x]x; 0 I] (node_kinematics): the translational columns are
@@ -139,10 +138,8 @@ BodyResistance::BodyRows BodyResistance::rows(std::size_t k) const {
   const Centred& c = centred_[k];
   if (!c.on) return rows_[k];
   PairRows S;
-  LubricationCoefficients unused;
-  const Accepted& p = accepted_[k];
-  LubricationPair::rows(radii_[p.node_a], radii_[p.node_b], p.separation, mu_, options_, S, unused);
-  if (p.weight != 1.0) S *= std::sqrt(p.weight);
+  LubricationPair::rows(c.d, c.c, S);
+  if (c.weight != 1.0) S *= std::sqrt(c.weight);
   return S;
 }
 

@@ -148,7 +148,7 @@ Eigen::Matrix<double, 12, 1> LubricationPair::centred_noise(const Vec3& d, const
                                                             double w,
                                                             const Eigen::Matrix<double, kRows, 1>& beta) {
   // Square roots taken as rows() takes them (sqrt(c_m), then sqrt(w)), so that both paths scale alike.
-  const double sw = w == 1.0 ? 1.0 : std::sqrt(w);
+  const double sw = std::sqrt(w);
   const double s_sq = std::sqrt(c.squeeze) * sw, s_sh = std::sqrt(c.shear) * sw;
   const double s_pu = std::sqrt(c.pump) * sw, s_tw = std::sqrt(c.twist) * sw;
   const Vec3 b = beta.segment<3>(1), p = beta.segment<3>(4);
@@ -163,8 +163,11 @@ Eigen::Matrix<double, 12, 1> LubricationPair::centred_noise(const Vec3& d, const
 void LubricationPair::rows(double a_i, double a_j, const Vec3& r, double mu,
                            const LubricationOptions& options, PairRows& S, LubricationCoefficients& c) {
   const double dist = r.norm();
-  const Vec3 d = r / dist;
   c = coefficients(a_i, a_j, dist, mu, options);
+  rows(r / dist, c, S);
+}
+
+void LubricationPair::rows(const Vec3& d, const LubricationCoefficients& c, PairRows& S) {
   const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - d * d.transpose();
   const Eigen::Matrix3d D = cross_matrix(d);  // D w = d x w
 

@@ -94,7 +94,6 @@ class BodyResistance {
   std::vector<Centred> centred_;
   std::vector<Eigen::Matrix<double, 12, 1>> pair_force_;  // scratch: per-pair body wrenches
   std::vector<double> radii_;
-  double mu_ = 0.0;  // viscosity of the last update (rows() of centred pairs)
   bool centred_gram_ = true;
 };
 

@@ -80,6 +80,8 @@ class LubricationPair {
   // The same, also returning the coefficients it used.
   static void rows(double a_i, double a_j, const Vec3& r, double mu, const LubricationOptions& options,
                    PairRows& S, LubricationCoefficients& c);
+  // S from the unit separation d and the coefficients c of coefficients().
+  static void rows(const Vec3& d, const LubricationCoefficients& c, PairRows& S);
   // w S^T S for two nodes at their bodies' centres (identity kinematics, e.g. spheres), in closed
   // form from the coefficients c of rows(): the blocks (i,i), (j,j) and (i,j) of the 12 x 12 Gram
   // matrix, each 6 x 6. With P = I - d d^T and D w = d x w (P D = D, D^T D = P):
