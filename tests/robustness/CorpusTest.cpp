@@ -165,6 +165,14 @@ TEST_F(Corpus, YamlSyntax) {
        "^in\\.yaml:[0-9]+:[0-9]+: the document nests deeper than 64 levels or expands");
   file("unknown alias", "system: *nothing\n", "^in\\.yaml:[0-9]+:[0-9]+: syntax error: ");
   file("non-UTF-8 bytes", "system:\n  count: \xff\xfe\n", "^in\\.yaml:2:10: not UTF-8 text");
+  // yaml-cpp 0.7's LoadAll never returned on these (a stray flow entry where a document's node
+  // belongs); found by the fuzzer under ASan, 3 December 2026.
+  const std::string stray_comma = "syntax error: a ',' outside \\[ \\] or \\{ \\}";
+  file("a lone comma", ",\n", "^in\\.yaml:1:1: " + stray_comma);
+  file("an indented lone comma", "  ,\n", "^in\\.yaml:1:3: " + stray_comma);
+  file("a comma after a top-level scalar", "\"x\",\n", "^in\\.yaml:1:4: " + stray_comma);
+  file("a comma after a flow map", "{system: {count: 3}},\n", "^in\\.yaml:1:21: " + stray_comma);
+  file("a comma after a document marker", "---\n,\n", "^in\\.yaml:2:1: " + stray_comma);
   file("key that is a list", "[a, b]: 1\n" + kBase,
        "^in\\.yaml:1:1: \\(top level\\): expected a section name");
   {

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <optional>
 
+#include "config/YamlDocumentScan.hpp"
 #include "fldsim/error.hpp"
 
 namespace fldsim {
@@ -322,6 +323,14 @@ void check_tree(const std::string& path, const YAML::Node& node, std::size_t dep
   }
 }
 
+// What yaml-cpp stalled on, for the message: in practice a `,` where a document's node belongs.
+std::string stray_token(const std::string& text, const YAML::Mark& m) {
+  const char c = m.pos >= 0 && static_cast<std::size_t>(m.pos) < text.size() ? text[m.pos] : '\0';
+  if (c == ',') return "a ',' outside [ ] or { } (a comma separates items only inside a flow list or map)";
+  if (c == '\0') return "the text ends where a value was expected";
+  return std::string("unexpected '") + c + "' where a value was expected";
+}
+
 }  // namespace
 
 YAML::Node load_yaml_file(const std::string& path) {
@@ -340,29 +349,34 @@ YAML::Node load_yaml_file(const std::string& path) {
   if (const auto bad = invalid_utf8(text))
     throw ConfigError(path + ":" + std::to_string(bad->first) + ":" + std::to_string(bad->second) +
                       ": not UTF-8 text (an experiment file is YAML, which is Unicode)");
-  std::vector<YAML::Node> documents;
+  // Scanned first, not YAML::LoadAll: see YamlDocumentScan.hpp for the text LoadAll never returns on.
+  YamlDocumentScan scan;
+  YAML::Node root;
   try {
-    documents = YAML::LoadAll(text);
+    scan = scan_yaml_documents(text);
+    if (!scan.stalled_at) root = YAML::Load(text);  // the first document only
   } catch (const YAML::Exception& e) {
     if (const auto tab = tab_in_indentation(text); tab && tab->first <= e.mark.line + 1)
       throw ConfigError(path + ":" + std::to_string(tab->first) + ":" + std::to_string(tab->second) +
                         ": syntax error: a tab in the indentation (YAML indents with spaces only)");
     throw ConfigError(at(path, e.mark) + ": syntax error: " + e.msg);
   }
-  if (documents.empty() || documents[0].IsNull())
+  if (scan.stalled_at)
+    throw ConfigError(at(path, *scan.stalled_at) + ": syntax error: " + stray_token(text, *scan.stalled_at));
+  if (root.IsNull())
     throw ConfigError(path + ": empty: expected a map of sections (system, flow, hydro, run, ...)");
-  if (documents.size() > 1)
-    throw ConfigError(at(path, documents[1].Mark()) +
+  if (scan.documents > 1)
+    throw ConfigError(at(path, scan.second_document.value_or(YAML::Mark::null_mark())) +
                       ": a second YAML document: one file holds one experiment (remove the `---` line and "
                       "what follows, or split the file)");
   ConfigErrors errors(path);
   std::size_t count = 0;
   try {
-    check_tree(path, documents[0], 0, count, errors);
+    check_tree(path, root, 0, count, errors);
   } catch (const std::length_error&) {
   }
   errors.throw_if_any();
-  return documents[0];
+  return root;
 }
 
 Params validate_params(const YAML::Node& node, const ParamSchema& schema, const std::string& path,
