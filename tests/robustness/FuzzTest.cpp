@@ -133,6 +133,18 @@ TEST(Fuzz, ExperimentFilesAreAcceptedOrRefusedCleanly) {
                         "examples/paper/quick/fused_dumbbell-phi0.3-pe0.1.yaml"})
     seeds.push_back(read_bytes(src / f));
   const fldsim::PluginRegistry registry(fldsim::PluginRegistry::search_path({}, "."));
+  // The seeds themselves must pass every check: were a plugin they name missing (fuzz_tests
+  // builds only those, tests/robustness/CMakeLists.txt), every mutant would be refused for that
+  // one reason and the fuzzer would reach nothing behind it.
+  for (const std::string& seed : seeds) {
+    write_bytes(scratch() / "seed.yaml", seed);
+    try {
+      const fldsim::Experiment ex = fldsim::read_experiment((scratch() / "seed.yaml").string(), {}, registry);
+      fldsim::check_run(ex, registry, {(scratch() / "out.h5").string(), false, ""});
+    } catch (const std::exception& e) {
+      FAIL() << "an unmutated seed is refused: " << e.what();
+    }
+  }
   const long n = budget(300);
   long accepted = 0, refused = 0, checked = 0;
   const fs::path file = scratch() / "mutant.yaml";
