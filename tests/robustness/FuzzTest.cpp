@@ -133,14 +133,23 @@ TEST(Fuzz, ExperimentFilesAreAcceptedOrRefusedCleanly) {
                         "examples/paper/quick/fused_dumbbell-phi0.3-pe0.1.yaml"})
     seeds.push_back(read_bytes(src / f));
   const fldsim::PluginRegistry registry(fldsim::PluginRegistry::search_path({}, "."));
+  // Reads an experiment file and, unless its scene is large (building large scenes is not what is
+  // fuzzed here: the reading and the checks are), counts it in `checked` and runs every pre-run check.
+  auto read_and_check = [&](const fs::path& f, long& checked) {
+    const fldsim::Experiment ex = fldsim::read_experiment(f.string(), {}, registry);
+    if (ex.count > 2000) return;
+    ++checked;
+    fldsim::check_run(ex, registry, {(scratch() / "out.h5").string(), false, ""});
+  };
   // The seeds themselves must pass every check: were a plugin they name missing (fuzz_tests
   // builds only those, tests/robustness/CMakeLists.txt), every mutant would be refused for that
   // one reason and the fuzzer would reach nothing behind it.
   for (const std::string& seed : seeds) {
     write_bytes(scratch() / "seed.yaml", seed);
+    long seed_checked = 0;
     try {
-      const fldsim::Experiment ex = fldsim::read_experiment((scratch() / "seed.yaml").string(), {}, registry);
-      fldsim::check_run(ex, registry, {(scratch() / "out.h5").string(), false, ""});
+      read_and_check(scratch() / "seed.yaml", seed_checked);
+      ASSERT_EQ(seed_checked, 1) << "a seed too large to be checked";
     } catch (const std::exception& e) {
       FAIL() << "an unmutated seed is refused: " << e.what();
     }
@@ -153,12 +162,7 @@ TEST(Fuzz, ExperimentFilesAreAcceptedOrRefusedCleanly) {
     const std::string text = m.text(seeds[std::size_t(i) % seeds.size()]);
     write_bytes(file, text);
     try {
-      const fldsim::Experiment ex = fldsim::read_experiment(file.string(), {}, registry);
-      // Building large scenes is not what is fuzzed here: the reading and the checks are.
-      if (ex.count <= 2000) {
-        ++checked;
-        fldsim::check_run(ex, registry, {(scratch() / "out.h5").string(), false, ""});
-      }
+      read_and_check(file, checked);
       ++accepted;
     } catch (const fldsim::ConfigError& e) {
       ++refused;
