@@ -143,6 +143,7 @@ BrownianEquilibrium run_brownian(const EquilibriumScene& scene, const BrownianOp
       const auto& zp = sink.scalar("results/stress/Z_particle");
       out.Z_particle = zp.value;
       out.Z_particle_se = zp.stderr_value;
+      out.has_Z_particle = true;
     }
   }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
@@ -161,7 +162,7 @@ BrownianEquilibrium run_brownian_replicas(const EquilibriumScene& scene, Brownia
     out.g.append_blocks(r.g);
     out.Z_blocks.push_back(r.Z.mean);
     if (opt.stress_every > 0) out.Z_observer_blocks.push_back(r.Z_observer);
-    if (opt.stress_every > 0) out.Z_particle_blocks.push_back(r.Z_particle);
+    if (r.has_Z_particle) out.Z_particle_blocks.push_back(r.Z_particle);
     if (opt.contact_term) out.Z_contact_blocks.push_back(r.Z_contact.mean);
     out.steps += r.steps;
     out.accepted += r.accepted;
@@ -175,9 +176,12 @@ BrownianEquilibrium run_brownian_replicas(const EquilibriumScene& scene, Brownia
     const oracle::MeanError z = oracle::block_mean(out.Z_observer_blocks);
     out.Z_observer = z.mean;
     out.Z_observer_se = z.se;
+  }
+  if (runs > 0 && out.Z_particle_blocks.size() == std::size_t(runs)) {
     const oracle::MeanError zp = oracle::block_mean(out.Z_particle_blocks);
     out.Z_particle = zp.mean;
     out.Z_particle_se = zp.se;
+    out.has_Z_particle = true;
   }
   return out;
 }

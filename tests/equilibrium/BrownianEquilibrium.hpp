@@ -62,6 +62,7 @@ struct BrownianEquilibrium {
   double Z_observer = 0.0, Z_observer_se = 0.0;  // from the stress observer (if stress_every > 0)
   std::vector<double> Z_observer_blocks;         // replicas: each run's observer Z (one block each)
   double Z_particle = 0.0, Z_particle_se = 0.0;  // observer Z with every part (if it wrote one)
+  bool has_Z_particle = false;                   // the observer wrote Z_particle (it had a Brownian stress)
   std::vector<double> Z_particle_blocks;         // replicas: each run's Z_particle
   std::vector<double> Z_contact_blocks;          // with contact_term: per block (replicas: per run)
   oracle::MeanError Z_contact;
