@@ -76,8 +76,9 @@ bench: build
 	@bash bench/run.sh $(BUILD)
 
 # Long physics validations (validate/README.md); `make validate V="equilibrium"` runs only those named.
+# Their cases run JOBS at a time (one thread each); run again after an interruption to resume.
 validate: build
-	@bash validate/run.sh $(BUILD) $(V)
+	@JOBS=$(JOBS) bash validate/run.sh $(BUILD) $(V)
 
 # The quick study (examples/paper/quick-sweep.yaml): a sweep on the local cores (finished points
 # are skipped, interrupted ones resumed), then the paper's figures from its result files.

@@ -2,6 +2,7 @@
 // potential, with the tables of the CI tests at larger N and length:
 //   fldsim_validate_equilibrium                       every case below, long settings
 //   fldsim_validate_equilibrium CASE [key=value ...]  one case, settings overridden
+//   fldsim_validate_equilibrium --list                the case names, one per line
 // Cases: spheres, dicolloid02 (FLD with taper: smooth, the default repulsion, dt 2.5e-4, against the
 // hard-core oracle: as EquilibriumComparisonTest), spheres_dt1e-3, spheres_full_oracle,
 // spheres_nodrift, spheres_notaper (must fail: the taper window's time-step bias at 1e-3, the
@@ -356,6 +357,11 @@ int main(int argc, char** argv) {
   }
   try {
     auto all = cases();
+    if (argc > 1 && std::string(argv[1]) == "--list") {
+      // One case name per line, for validate/run.sh, which runs each case as its own process.
+      for (const auto& known : all) std::cout << known.first << "\n";
+      return 0;
+    }
     if (argc > 1) {
       const std::string name = argv[1];
       if (!all.count(name)) {
