@@ -11,6 +11,14 @@ from dataclasses import dataclass
 DEFAULT_DT = 1.0e-3
 DEFAULT_TOLERANCE = 1.0e-6
 DEFAULT_CUTOFF = 2.5
+# fld's smooth taper switches the pair terms off over this width below the cutoff; it must end
+# above contact (the plugin refuses taper_width >= cutoff - 2). Cutoffs closer to contact than
+# the default width (the cutoff family's 2.1-2.3 a) taper over half the gap range instead.
+DEFAULT_TAPER_WIDTH = 0.3
+
+
+def taper_width(cutoff):
+    return DEFAULT_TAPER_WIDTH if cutoff - 2.0 > DEFAULT_TAPER_WIDTH else round(0.5 * (cutoff - 2.0), 6)
 
 
 @dataclass(frozen=True)
@@ -38,7 +46,10 @@ class Setting:
     def overrides(self):
         step = ([f"run.dt=auto", f"run.dt_max={self.dt!r}", f"run.tolerance={self.step_tolerance!r}"]
                 if self.step_tolerance else [f"run.dt={self.dt!r}"])
-        return step + [f"hydro.tolerance={self.tolerance!r}", f"hydro.cutoff={self.cutoff!r}"]
+        hydro = [f"hydro.tolerance={self.tolerance!r}", f"hydro.cutoff={self.cutoff!r}"]
+        if taper_width(self.cutoff) != DEFAULT_TAPER_WIDTH:
+            hydro.append(f"hydro.taper_width={taper_width(self.cutoff)!r}")
+        return step + hydro
 
     @property
     def is_default(self):
