@@ -47,8 +47,9 @@ class Setting:
         step = ([f"run.dt=auto", f"run.dt_max={self.dt!r}", f"run.tolerance={self.step_tolerance!r}"]
                 if self.step_tolerance else [f"run.dt={self.dt!r}"])
         hydro = [f"hydro.tolerance={self.tolerance!r}", f"hydro.cutoff={self.cutoff!r}"]
-        if taper_width(self.cutoff) != DEFAULT_TAPER_WIDTH:
-            hydro.append(f"hydro.taper_width={taper_width(self.cutoff)!r}")
+        width = taper_width(self.cutoff)
+        if width != DEFAULT_TAPER_WIDTH:  # the plugin's default (sdk ResistanceModel.cpp)
+            hydro.append(f"hydro.taper_width={width!r}")
         return step + hydro
 
     @property
