@@ -2,7 +2,8 @@
 # make bench: builds the benchmarks if needed, runs them and regenerates bench/RESULTS.md.
 #   bash bench/run.sh [BUILD_DIR]        full set, about 4-6 minutes on 2 cores
 #   FLDSIM_BENCH_QUICK=1 bash bench/run.sh [BUILD_DIR]   smoke version, about 2 minutes
-# Outputs: bench/results/{step.csv, parts.json, *.md} (git-ignored) and bench/RESULTS.md.
+# Outputs: bench/results/{step.csv, parts.json, *.md} (git-ignored) and bench/RESULTS.md (rewritten whole;
+# hand-made runs worth keeping go in bench/HISTORY.md, which this script never touches).
 # Every figure that is compared is a ratio of two numbers measured in this one invocation.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -135,5 +136,7 @@ echo "== bench/lammps (three scenes)"
   for name in accuracy lammps; do
     [ -f "$out/$name.md" ] && { echo; cat "$out/$name.md"; }
   done
+  echo
+  echo "Earlier hand-made runs (single scenes, repeated turns), cited by README.md: [HISTORY.md](HISTORY.md); \`make bench\` never writes there."
 } > "$root/bench/RESULTS.md"
 echo "== wrote bench/RESULTS.md"
