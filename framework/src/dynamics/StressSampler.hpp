@@ -12,7 +12,8 @@
 // deterministic S(x), removes the zero-mean O(dt^-1/2) noise L M F_B and leaves the O(dt) change
 // of the deterministic part: the variance drops from O(1/dt) to O(1). Without a midpoint stage
 // (drift: none) there is no Brownian estimate. The extra solve restores the solver's warm start,
-// so a run is bit-identical with or without a stress observer.
+// so a run is bit-identical with or without a stress observer; it starts from the previous
+// sample's deterministic solution.
 // With a BrownianStressProbe (run.brownian_stress: random_difference, the default) the Brownian
 // piece is the probe's step-independent estimate at x instead, in any integrator.
 #pragma once
@@ -39,6 +40,11 @@ class StressSampler {
   const StressPieces& pieces() const { return pieces_; }
   // The step's last own solve (the extra deterministic solve is not counted).
   const SolveStats& step_solve() const { return step_solve_; }
+  // The last deterministic solution, the next sample's CG start: part of a checkpoint, since the
+  // last bits of the stress depend on it (a vector of another size, e.g. from an older
+  // checkpoint, leaves the start at zero).
+  const std::vector<double>& deterministic() const { return deterministic_; }
+  void restore_deterministic(const std::vector<double>& dU);
 
  private:
   bool brownian_, midpoint_;
@@ -47,6 +53,7 @@ class StressSampler {
   SolveStats step_solve_;
   Eigen::Matrix3d start_total_ = Eigen::Matrix3d::Zero();
   std::vector<double> dU_step_;
+  std::vector<double> deterministic_;
 };
 
 }  // namespace fldsim

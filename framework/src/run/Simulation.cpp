@@ -16,7 +16,8 @@
 namespace fldsim {
 namespace {
 
-const char* const kStepStateKey = "run.steps";  // the step control's state in a checkpoint
+const char* const kStepStateKey = "run.steps";           // the step control's state in a checkpoint
+const char* const kStressStartKey = "run.stress_start";  // the stress solve's CG start
 
 // The bodies' part of a checkpoint; the one place that knows which System fields a restart sets.
 void place_checkpoint_bodies(System& sys, const Checkpoint& c, const std::string& source) {
@@ -237,9 +238,9 @@ Simulation::Simulation(SimulationParts parts, SimulationSettings settings, Resul
 }
 
 // capture() and apply() are the one place that lists the run state a restart needs: the
-// bodies, the clock and strain, the solver's warm start, each observer's accumulators, and the
-// step control's state (the adaptive proposal and the step statistics; a frame's end leaves no
-// bridged noise pending).
+// bodies, the clock and strain, the solver's warm starts (the step's and the stress sample's),
+// each observer's accumulators, and the step control's state (the adaptive proposal and the step
+// statistics; a frame's end leaves no bridged noise pending).
 Checkpoint Simulation::capture() const {
   const System& sys = *system_;
   Checkpoint c;
@@ -259,6 +260,7 @@ Checkpoint Simulation::capture() const {
     if (!state.empty()) c.blobs[parts_.observer_keys[i]] = std::move(state);
   }
   c.blobs[kStepStateKey] = steps_->save_state();
+  c.blobs[kStressStartKey] = steps_->stress_start();
   return c;
 }
 
@@ -276,6 +278,8 @@ void Simulation::apply(const Checkpoint& c, const std::string& source) {
            << ": its averages start afresh\n";
     }
   }
+  if (const auto start = c.blobs.find(kStressStartKey); start != c.blobs.end())
+    steps_->restore_stress_start(start->second);
   const auto it = c.blobs.find(kStepStateKey);
   if (it != c.blobs.end()) {
     try {

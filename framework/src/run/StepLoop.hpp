@@ -80,6 +80,9 @@ class StepLoop {
   // bridged noise pending: every frame is its own base interval of the Brownian path.
   std::vector<double> save_state() const;
   void restore_state(const std::vector<double>& state);
+  // The stress sampler's CG start (StressSampler::deterministic), for checkpoints.
+  const std::vector<double>& stress_start() const { return stress_.deterministic(); }
+  void restore_stress_start(const std::vector<double>& dU) { stress_.restore_deterministic(dU); }
 
  private:
   void warn_overlap(double gap, const NodePair* pair);
