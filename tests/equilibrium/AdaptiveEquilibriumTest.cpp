@@ -41,7 +41,7 @@
 // Measured (this build): Z 4.068 +- 0.107 against the oracle's 3.946 +- 0.026 (ratio 1.031,
 // z 1.1); g max |z| 2.0, chi-square 22.3 on 51 bins (p 1.00): pass.
 // Resolved since (4 December 2026, 32 runs from seed 201, docs/time_steps.md): Z / Z_MC 1.030 +-
-// 0.012 at this tolerance and 1.020 +- 0.011 at 2.5e-4: a step bias of about 3 %, inside this
+// 0.012 at this tolerance and 1.020 +- 0.012 at 2.5e-4: a step bias of about 3 %, inside this
 // test's resolution but not far (other normals, a polar-method sampler tried in bench/README.md,
 // put these 8 runs at 1.062, z 3.09).
 // Power: the combined SE of Z is 2.8 %, so Z biases above about 8.5 % fail (the one-run SE said
