@@ -1,6 +1,7 @@
 #include "dynamics/StressSampler.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace fldsim {
 
@@ -11,7 +12,11 @@ StressSampler::StressSampler(std::size_t bodies, bool brownian, bool midpoint)
       deterministic_(6 * bodies, 0.0) {}
 
 void StressSampler::restore_deterministic(const std::vector<double>& dU) {
-  if (dU.size() == deterministic_.size()) std::copy(dU.begin(), dU.end(), deterministic_.begin());
+  // Only a start: one of another size or with a non-finite value (a corrupt checkpoint) is dropped
+  // and the solve starts from zero, instead of feeding NaN to CG.
+  if (dU.size() != deterministic_.size()) return;
+  if (!std::all_of(dU.begin(), dU.end(), [](double v) { return std::isfinite(v); })) return;
+  std::copy(dU.begin(), dU.end(), deterministic_.begin());
 }
 
 void StressSampler::sample(StressStage stage, const System& s, VelocityEvaluator& ev) {

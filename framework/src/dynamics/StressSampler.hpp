@@ -42,7 +42,7 @@ class StressSampler {
   const SolveStats& step_solve() const { return step_solve_; }
   // The last deterministic solution, the next sample's CG start: part of a checkpoint, since the
   // last bits of the stress depend on it (a vector of another size, e.g. from an older
-  // checkpoint, leaves the start at zero).
+  // checkpoint, or with a non-finite value leaves the start at zero).
   const std::vector<double>& deterministic() const { return deterministic_; }
   void restore_deterministic(const std::vector<double>& dU);
 
