@@ -1,4 +1,4 @@
-// The counter-based normals (fldsim/random.hpp, RandomStream::normal2, Box-Muller):
+// The counter-based normals (fldsim/random.hpp, RandomStream::normal2, Marsaglia's polar method):
 //  - a pair is a pure function of (seed, purpose, step, stage, object, index), and normals()
 //    fills from the same pairs;
 //  - 2^20 normals (2^19 pairs over many pair-like objects and indices) have the standard normal
@@ -8,8 +8,9 @@
 //    degrees of freedom (85.35, Wilson-Hilferty). Six comparisons at 0.1 % each: family-wise false
 //    alarms below 1 %. The seeds are fixed, so the test is deterministic; the tolerances say how
 //    unlikely a pass of a wrong sampler of this size would be.
-//  - The same check applied to a broken Box-Muller (one uniform for both the radius and the
-//    angle) must fail, so the check can fail.
+//  - The same check applied to broken samplers must fail, so the check can fail: a polar method
+//    that keeps the points outside the unit disc (pulled onto its rim instead of redrawn), and a
+//    Box-Muller with one uniform for both the radius and the angle.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -91,6 +92,23 @@ TEST(RandomStream, NormalsHaveTheStandardNormalDistribution) {
       check_standard_normal([&](std::uint64_t o, std::uint32_t i) { return s.normal2(o, i); });
   std::printf("%s\n", c.report.c_str());
   EXPECT_EQ(c.failures, 0) << c.report;
+}
+
+TEST(RandomStream, TheNormalityCheckFailsAPolarMethodWithoutRejection) {
+  const RandomStream s(2026, RandomPurpose::PairNoise, 4242, 0);
+  const NormalCheck c = check_standard_normal([&](std::uint64_t o, std::uint32_t i) {
+    const auto b = s.bits(o, i);
+    double u = RandomStream::to_signed_unit(b[0]), v = RandomStream::to_signed_unit(b[1]);
+    double q = u * u + v * v;
+    if (q >= 1.0) {  // the bug: the candidate is moved into the disc instead of rejected
+      const double shrink = (1.0 - 1e-12) / std::sqrt(q);
+      u *= shrink, v *= shrink, q = u * u + v * v;
+    }
+    const double f = std::sqrt(-2.0 * std::log(q) / q);
+    return std::array<double, 2>{u * f, v * f};
+  });
+  std::printf("%s\n", c.report.c_str());
+  EXPECT_GT(c.failures, 0) << c.report;
 }
 
 TEST(RandomStream, TheNormalityCheckFailsABrokenBoxMuller) {
