@@ -214,13 +214,13 @@ TEST(ResistanceModel, AssemblyNoiseAndSolveAreIndependentOfThreadCount) {
 }
 #endif
 
-// refactor_threshold: a later assembly of a step reuses the preconditioner built at the step's
-// first assembly while the diagonal of R has moved little. That reuse must (1) really happen for a
-// small move, (2) leave the answer a converged solve of the *current* matrix, (3) not happen for a
-// large move, and (4) never reach into the next step: a run resumed at step s starts with a fresh
-// model, so step s must solve bit-identically whether or not the model assembled anything at
-// step s - 1 (an odd number of assemblies there included).
-TEST(ResistanceModel, FactorIsReusedWithinAStepAndNeverAcrossSteps) {
+// refactor_threshold: an assembly reuses the last preconditioner, within a step and across steps,
+// while the diagonal of R has moved little since it was built. That reuse must (1) really happen
+// for a small move, (2) leave the answer a converged solve of the *current* matrix, (3) not happen
+// for a large move, and (4) survive a checkpoint: a fresh model given the first one's
+// save_state() solves bit-identically to it (as `--resume` needs), while a fresh model without it
+// does not; a state that does not fit is refused.
+TEST(ResistanceModel, FactorIsReusedWhileRMovesLittleAndSurvivesACheckpoint) {
   const Config setup = kSetups[0];
   auto configuration = [&](unsigned seed) {
     System s(shape_of(setup), setup.n, setup.box, physics(1.0, 1.0, 0.3));
@@ -265,18 +265,30 @@ TEST(ResistanceModel, FactorIsReusedWithinAStepAndNeverAcrossSteps) {
     return std::make_pair(solve(*m, s, 1), std::move(m));
   };
 
-  // (4) One assembly at step 0 (A), then step 1 (A1, close to A): as a fresh model's first
-  // assembly of step 1, although A's factor would have passed the threshold.
+  // (4) One assembly at step 0 (A), a checkpoint, then step 1 (A1, close to A): A's factor is
+  // carried into step 1, and a model restored from the checkpoint does the same, bit for bit.
   auto carried = model(0.25);
   assemble_at(*carried, A, 0);
+  const std::vector<double> state = carried->save_state();
+  ASSERT_FALSE(state.empty());
+  auto restored = model(0.25);
+  restored->restore_state(state);
+  EXPECT_EQ(restored->save_state(), state);
   assemble_at(*carried, A1, 1);
   const std::vector<double> x_carried = solve(*carried, A1, 1);
-  const auto [x_fresh, fresh] = own_factor(A1);
-  EXPECT_EQ(carried->last_solve().iterations, fresh->last_solve().iterations);
-  for (std::size_t k = 0; k < F.size(); ++k) ASSERT_EQ(x_carried[k], x_fresh[k]) << k;
+  assemble_at(*restored, A1, 1);
+  const std::vector<double> x_restored = solve(*restored, A1, 1);
+  for (std::size_t k = 0; k < F.size(); ++k) ASSERT_EQ(x_carried[k], x_restored[k]) << k;
+  const std::vector<double> x_fresh = own_factor(A1).first;  // a resume without the state
+  EXPECT_LE(carried->last_solve().residual, 1e-8);
+  EXPECT_NE(x_carried, x_fresh) << "step 1 did not reuse step 0's factor";
+  std::vector<double> truncated(state.begin(), state.end() - 1), other_n = state;
+  other_n[0] += 1.0;
+  EXPECT_THROW(model(0.25)->restore_state(truncated), Error);
+  EXPECT_THROW(model(0.25)->restore_state(other_n), Error);
 
-  // (1), (2) Second assembly of step 1 (B, moved little) reuses A1's factor: converged on B's
-  // matrix, close to a solve with B's own factor but not bit-identical to it.
+  // (1), (2) Second assembly of step 1 (B, moved little) reuses the factor still (A's): converged
+  // on B's matrix, close to a solve with B's own factor but not bit-identical to it.
   assemble_at(*carried, B, 1);
   const std::vector<double> x_reused = solve(*carried, B, 1);
   const auto [x_own, own] = own_factor(B);

@@ -10,10 +10,12 @@
 // Major: any change to a class a plugin derives from or receives (2: Observer save/restore_state;
 // 3: ForceLaw::add's virial is the molecular (body-centre) virial, no longer node-node;
 // 4: HydroModel::provides_stresslets, no zero default for stresslet_sum; BlockPCG keeps its
-// preconditioners out of the public header).
+// preconditioners out of the public header; 5: HydroModel::save_state/restore_state, so a model
+// may carry state such as a preconditioner across steps and a resumed run still continues bit for
+// bit).
 // Minor: additions a plugin built against an older minor can ignore (fldsim::PairEnergy, the
 // optional pair energy of a force law, came in 2.1 as a class of its own).
-#define FLDSIM_API_MAJOR 4
+#define FLDSIM_API_MAJOR 5
 #define FLDSIM_API_MINOR 0
 
 #define FLDSIM_STR2(x) #x

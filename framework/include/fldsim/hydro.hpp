@@ -60,6 +60,12 @@ class FLDSIM_VISIBLE HydroModel : public Component {
     (void)dU;
     throw Error("hydro: stresslet_sum called on a model that provides no stresslets");
   }
+  // State that a later step depends on beyond the configuration (e.g. a preconditioner carried
+  // across steps), as doubles: stored in checkpoints and handed back on --resume after
+  // configure(), so a resumed run continues bit for bit. restore_state throws fldsim::Error if
+  // the state does not fit. A model that keeps no such state keeps the defaults. (API 5.0.)
+  virtual std::vector<double> save_state() const { return {}; }
+  virtual void restore_state(const std::vector<double>& state) { (void)state; }
 };
 
 }  // namespace fldsim

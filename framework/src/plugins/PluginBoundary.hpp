@@ -83,6 +83,12 @@ class GuardedHydro final : public HydroModel {
     return plugin_call(who_, "stresslet_sum()",
                        [&] { return Eigen::Matrix3d(in_->stresslet_sum(s, p, dU)); });
   }
+  std::vector<double> save_state() const override {
+    return plugin_call(who_, "save_state()", [&] { return in_->save_state(); });
+  }
+  void restore_state(const std::vector<double>& state) override {
+    plugin_call(who_, "restore_state()", [&] { in_->restore_state(state); });
+  }
 
  private:
   std::shared_ptr<HydroModel> in_;

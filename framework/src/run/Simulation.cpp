@@ -18,6 +18,7 @@ namespace {
 
 const char* const kStepStateKey = "run.steps";           // the step control's state in a checkpoint
 const char* const kStressStartKey = "run.stress_start";  // the stress solve's CG start
+const char* const kHydroStateKey = "hydro.state";        // HydroModel::save_state (e.g. its preconditioner)
 
 // The bodies' part of a checkpoint; the one place that knows which System fields a restart sets.
 void place_checkpoint_bodies(System& sys, const Checkpoint& c, const std::string& source) {
@@ -239,8 +240,9 @@ Simulation::Simulation(SimulationParts parts, SimulationSettings settings, Resul
 
 // capture() and apply() are the one place that lists the run state a restart needs: the
 // bodies, the clock and strain, the solver's warm starts (the step's and the stress sample's),
-// each observer's accumulators, and the step control's state (the adaptive proposal and the step
-// statistics; a frame's end leaves no bridged noise pending).
+// each observer's accumulators, the step control's state (the adaptive proposal and the step
+// statistics; a frame's end leaves no bridged noise pending), and the hydro model's own state
+// (the matrix its carried preconditioner was built from).
 Checkpoint Simulation::capture() const {
   const System& sys = *system_;
   Checkpoint c;
@@ -261,6 +263,8 @@ Checkpoint Simulation::capture() const {
   }
   c.blobs[kStepStateKey] = steps_->save_state();
   c.blobs[kStressStartKey] = steps_->stress_start();
+  if (std::vector<double> hydro = parts_.hydro->save_state(); !hydro.empty())
+    c.blobs[kHydroStateKey] = std::move(hydro);
   return c;
 }
 
@@ -280,6 +284,15 @@ void Simulation::apply(const Checkpoint& c, const std::string& source) {
   }
   if (const auto start = c.blobs.find(kStressStartKey); start != c.blobs.end())
     steps_->restore_stress_start(start->second);
+  // Without it (a checkpoint of an older build) the model starts without a carried preconditioner:
+  // the run continues correctly, equal to the uninterrupted one to the CG tolerance, not bit for bit.
+  if (const auto hydro = c.blobs.find(kHydroStateKey); hydro != c.blobs.end()) {
+    try {
+      parts_.hydro->restore_state(hydro->second);
+    } catch (const Error& e) {
+      throw Error(source + ": " + e.what());
+    }
+  }
   const auto it = c.blobs.find(kStepStateKey);
   if (it != c.blobs.end()) {
     try {

@@ -67,10 +67,11 @@ void describe_lubrication_params(ParamSchema& s) {
            "or centre, E R_ij with the body-centre separation; docs/two-body.md");
   s.number("tolerance", 1e-6, "", "relative residual of the conjugate-gradient solve").greater(0.0).less(1.0);
   s.integer("max_iterations", 1000L, "", "conjugate-gradient iteration limit").at_least(1).at_most(1000000);
-  s.number("refactor_threshold", 0.25, "",
-           "the midpoint stage reuses the CG preconditioner built at the step's start while the diagonal "
-           "blocks of R have changed by at most this fraction since (Frobenius norm over all bodies; 0: "
-           "rebuild at every assembly). Never carried across steps, so --resume stays bit-exact")
+  s.number("refactor_threshold", 0.15, "",
+           "an assembly reuses the last CG preconditioner (IC(0) factor), within the step and across "
+           "steps, while the diagonal blocks of R have changed by at most this fraction since it was "
+           "built (Frobenius norm over all bodies; 0: rebuild at every assembly). The matrix it was "
+           "built from is saved in checkpoints, so --resume stays bit-exact")
       .at_least(0.0)
       .at_most(10.0);
   s.choice("preconditioner", std::string("incomplete_cholesky"), {"incomplete_cholesky", "block_jacobi"},
@@ -166,8 +167,7 @@ std::vector<std::string> ResistanceModel::configure(const System& system, const 
   lub_ = BodyResistance(settings_.lub);
   const std::size_t n = system.size();
   A_.set_pattern(n, {});
-  factor_step_ = -1;
-  factor_diagonal_.assign(n, Mat6::Zero());
+  has_factor_ = false;
   strain_force_.assign(6 * n, 0.0);
   rhs_.assign(6 * n, 0.0);
   configured_ = true;
@@ -202,30 +202,89 @@ void ResistanceModel::assemble(const System& system, const NodePairList& pairs) 
     lub_.add_to(A_);
     if (shear) lub_.add_strain_force(E_, strain_force_.data());
     // The preconditioner only steers CG (it converges to the same tolerance with any SPD one), so a
-    // later assembly of the step may keep the factor built at its start: the factor holds its own
-    // copy of the pattern it was built on, valid whatever pairs entered or left since. Kept only
-    // while R has moved little: with a gap floor of 1e-5 a the 1/h squeeze terms change by O(1)
-    // within dt/2 and a stale factor costs more iterations than a new one (bench/README.md).
-    if (!reuse_factor(system.step())) {
-      for (std::size_t i = 0; i < n; ++i) factor_diagonal_[i] = A_.diagonal(i);
-      pcg_.prepare(A_);
-      factor_step_ = system.step();
+    // later assembly, of this step or a later one, may keep an older factor: the factor holds its
+    // own copy of the pattern it was built on, valid whatever pairs entered or left since. Kept
+    // only while R has moved little: with a gap floor of 1e-5 a the 1/h squeeze terms change by
+    // O(1) within dt/2 and a stale factor costs more iterations than a new one (bench/README.md).
+    // The matrix it was built from is kept (factor_source_) for checkpoints: restore_state
+    // rebuilds the same factor from it.
+    if (!reuse_factor()) {
+      factor_source_ = A_;
+      pcg_.prepare(factor_source_);
+      has_factor_ = true;
     }
   }
   stats_.pairs = std::int64_t(lub_.size());
 }
 
-// True when the factor built at this step's first assembly may precondition the current R: the
-// same step (never across steps: the choice then depends only on the step's own assemblies, as in
-// a run resumed at that step) and |diag(R) - diag(R_factor)|_F <= refactor_threshold |diag(R_factor)|_F.
-bool ResistanceModel::reuse_factor(std::int64_t step) const {
-  if (step != factor_step_ || settings_.refactor_threshold <= 0.0) return false;
+// True when the last factor may precondition the current R:
+// |diag(R) - diag(R_factor)|_F <= refactor_threshold |diag(R_factor)|_F.
+bool ResistanceModel::reuse_factor() const {
+  if (!has_factor_ || settings_.refactor_threshold <= 0.0 || factor_source_.blocks() != A_.blocks())
+    return false;
   double change = 0.0, size = 0.0;
-  for (std::size_t i = 0; i < factor_diagonal_.size(); ++i) {
-    change += (A_.diagonal(i) - factor_diagonal_[i]).squaredNorm();
-    size += factor_diagonal_[i].squaredNorm();
+  for (std::size_t i = 0; i < A_.blocks(); ++i) {
+    change += (A_.diagonal(i) - factor_source_.diagonal(i)).squaredNorm();
+    size += factor_source_.diagonal(i).squaredNorm();
   }
   return change <= settings_.refactor_threshold * settings_.refactor_threshold * size;
+}
+
+// The factor's source matrix: [n, pairs, (i, j) of each upper block, the n diagonal blocks, the
+// upper blocks], blocks column-major. Empty while there is no factor.
+std::vector<double> ResistanceModel::save_state() const {
+  if (!has_factor_) return {};
+  const std::size_t n = factor_source_.blocks(), m = factor_source_.col().size();
+  std::vector<double> out;
+  out.reserve(2 + 2 * m + 36 * (n + m));
+  out.push_back(double(n));
+  out.push_back(double(m));
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::int64_t a = factor_source_.row_start()[i]; a < factor_source_.row_start()[i + 1]; ++a) {
+      out.push_back(double(i));
+      out.push_back(double(factor_source_.col()[std::size_t(a)]));
+    }
+  for (std::size_t i = 0; i < n; ++i)
+    out.insert(out.end(), factor_source_.diagonal(i).data(), factor_source_.diagonal(i).data() + 36);
+  for (std::size_t a = 0; a < m; ++a)
+    out.insert(out.end(), factor_source_.upper(std::int64_t(a)).data(),
+               factor_source_.upper(std::int64_t(a)).data() + 36);
+  return out;
+}
+
+void ResistanceModel::restore_state(const std::vector<double>& state) {
+  if (!configured_) throw Error("hydro: restore_state() called before configure()");
+  if (state.empty()) return;
+  const std::size_t n = A_.blocks();
+  auto fail = [](const std::string& what) {
+    throw Error("hydro state (the preconditioner's matrix) " + what +
+                "; was the system changed since the checkpoint?");
+  };
+  if (state.size() < 2 || state[0] != double(n)) fail("is for another number of bodies");
+  const double pairs = state[1];
+  if (!(pairs >= 0.0) || pairs > double(n) * double(n) || pairs != std::floor(pairs)) fail("is malformed");
+  const std::size_t m = std::size_t(pairs);
+  if (state.size() != 2 + 2 * m + 36 * (n + m)) fail("has the wrong size");
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> upper(m);
+  for (std::size_t a = 0; a < m; ++a) {
+    const double i = state[2 + 2 * a], j = state[3 + 2 * a];
+    if (!(i >= 0.0 && i < j && j < double(n)) || i != std::floor(i) || j != std::floor(j))
+      fail("is malformed");
+    upper[a] = {std::uint32_t(i), std::uint32_t(j)};
+  }
+  const double* values = state.data() + 2 + 2 * m;
+  if (!std::all_of(values, values + 36 * (n + m), [](double v) { return std::isfinite(v); }))
+    fail("holds a non-finite value");
+  factor_source_.set_pattern(n, upper);
+  for (std::size_t i = 0; i < n; ++i) factor_source_.diagonal(i) = Eigen::Map<const Mat6>(values + 36 * i);
+  values += 36 * n;
+  for (std::size_t a = 0; a < m; ++a) {
+    const std::int64_t k = factor_source_.find(upper[a].first, upper[a].second);
+    if (k < 0) fail("is malformed");
+    factor_source_.upper(k) = Eigen::Map<const Mat6>(values + 36 * a);
+  }
+  pcg_.prepare(factor_source_);
+  has_factor_ = true;
 }
 
 void ResistanceModel::brownian_force(const System& system, const NodePairList& pairs,
