@@ -19,6 +19,7 @@ namespace {
 const char* const kStepStateKey = "run.steps";           // the step control's state in a checkpoint
 const char* const kStressStartKey = "run.stress_start";  // the stress solve's CG start
 const char* const kHydroStateKey = "hydro.state";        // HydroModel::save_state (e.g. its preconditioner)
+const char* const kProbeStateKey = "hydro.probe_state";  // the same of the stress probe's own model
 
 // The bodies' part of a checkpoint; the one place that knows which System fields a restart sets.
 void place_checkpoint_bodies(System& sys, const Checkpoint& c, const std::string& source) {
@@ -242,7 +243,7 @@ Simulation::Simulation(SimulationParts parts, SimulationSettings settings, Resul
 // bodies, the clock and strain, the solver's warm starts (the step's and the stress sample's),
 // each observer's accumulators, the step control's state (the adaptive proposal and the step
 // statistics; a frame's end leaves no bridged noise pending), and the hydro model's own state
-// (the matrix its carried preconditioner was built from).
+// and the stress probe's (the matrices their carried preconditioners were built from).
 Checkpoint Simulation::capture() const {
   const System& sys = *system_;
   Checkpoint c;
@@ -265,6 +266,9 @@ Checkpoint Simulation::capture() const {
   c.blobs[kStressStartKey] = steps_->stress_start();
   if (std::vector<double> hydro = parts_.hydro->save_state(); !hydro.empty())
     c.blobs[kHydroStateKey] = std::move(hydro);
+  if (parts_.probe_hydro)
+    if (std::vector<double> probe = parts_.probe_hydro->save_state(); !probe.empty())
+      c.blobs[kProbeStateKey] = std::move(probe);
   return c;
 }
 
@@ -286,9 +290,12 @@ void Simulation::apply(const Checkpoint& c, const std::string& source) {
     steps_->restore_stress_start(start->second);
   // Without it (a checkpoint of an older build) the model starts without a carried preconditioner:
   // the run continues correctly, equal to the uninterrupted one to the CG tolerance, not bit for bit.
-  if (const auto hydro = c.blobs.find(kHydroStateKey); hydro != c.blobs.end()) {
+  for (const auto& [key, model] :
+       {std::pair{kHydroStateKey, parts_.hydro.get()}, std::pair{kProbeStateKey, parts_.probe_hydro.get()}}) {
+    const auto state = c.blobs.find(key);
+    if (!model || state == c.blobs.end()) continue;
     try {
-      parts_.hydro->restore_state(hydro->second);
+      model->restore_state(state->second);
     } catch (const Error& e) {
       throw Error(source + ": " + e.what());
     }
