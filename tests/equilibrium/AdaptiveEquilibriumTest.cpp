@@ -172,9 +172,10 @@ TEST(AdaptiveEquilibrium, FreeDrainingSpheresMatchTheOracle) {
 // chi-square 40.4 on 50 bins, p 0.83, Z 4.053 +- 0.149 against 3.916 +- 0.032, z 0.9; about 55
 // CPU s; at tolerance 5e-4, with Box-Muller normals). With the polar normals at 5e-4 these runs
 // read Z 4.106 +- 0.071 against 3.916 +- 0.032 (ratio 1.049, z 2.43): near the edge as for
-// spheres, so this test too runs at the default tolerance 1e-4. Broken variant, measured once with these
-// runs: the fixed step 1e-3 gives Z 10.6 +- 0.4 (ratio 2.71, z 16.1), g max |z| 13.4, chi-square 227 on 51
-// bins: fails.
+// spheres, so this test too runs at the default tolerance 1e-4: Z 4.014 +- 0.066 (ratio 1.025,
+// z 1.34), g max |z| 2.64, chi-square p 0.51, 866 000 steps, about 225 CPU s (polar normals).
+// Broken variant, measured once with these runs: the fixed step 1e-3 gives Z 10.6 +- 0.4 (ratio
+// 2.71, z 16.1), g max |z| 13.4, chi-square 227 on 51 bins: fails.
 TEST(AdaptiveEquilibrium, FreeDrainingDicolloidsMatchTheOracle) {
   BrownianOptions opt = adaptive_options(kDefaultTolerance);
   opt.equilibrate = 0.15;
