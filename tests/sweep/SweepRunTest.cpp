@@ -20,6 +20,7 @@
 #include <sstream>
 #include <thread>
 
+#include "io/Checkpoint.hpp"
 #include "io/Summary.hpp"
 
 namespace {
@@ -276,6 +277,25 @@ TEST(Sweep, AnInterruptedSweepResumesToTheNumbersOfAnUninterruptedRun) {
   const auto partial = read_csv(d / "results" / "study.csv");
   ASSERT_EQ(partial.size(), 1u);
   EXPECT_EQ(partial[0].at("status"), "interrupted") << "partial results must be flagged in the study table";
+
+  // The listing's estimate is for the frames left (SweepPoints.AResumedPointIsEstimatedForTheFramesLeft).
+  const Result listing = run(sweep(d, "--dry-run"));
+  ASSERT_EQ(listing.code, 0) << listing.output;
+  // "estimated CPU 6.1 s to go (8.4 s for the whole sweep": both printed to 0.05 s.
+  double to_go = 0.0, whole = 0.0;
+  const std::size_t at = listing.output.find("estimated CPU ");
+  ASSERT_NE(at, std::string::npos) << listing.output;
+  ASSERT_EQ(std::sscanf(listing.output.c_str() + at, "estimated CPU %lf s to go (%lf s for the whole", &to_go,
+                        &whole),
+            2)
+      << listing.output;
+  const double frames = 60.0 / 1e-3;
+  const double share =
+      1.0 -
+      double(
+          fldsim::read_checkpoint((d / "results" / "duration-60_plugin-fld.h5.checkpoint").string()).step) /
+          frames;
+  EXPECT_NEAR(to_go / whole, share, 0.05 / to_go + 0.05 / whole) << listing.output;
 
   const Result resumed = run(sweep(d));
   ASSERT_EQ(resumed.code, 0) << resumed.output;

@@ -103,7 +103,9 @@ std::size_t time_points(const SweepPlan& plan, std::vector<PointState>& points, 
     const std::string text = read_text(probe_log.string());
     const double ms = code == 0 ? logged_ms_per_frame(text) : -1.0;
     if (ms > 0.0) {
-      st.cost_seconds = 1e-3 * ms * double(st.steps) * double(plan.threads);
+      const double share_left = st.whole_cost_seconds > 0.0 ? st.cost_seconds / st.whole_cost_seconds : 1.0;
+      st.whole_cost_seconds = 1e-3 * ms * double(st.steps) * double(plan.threads);
+      st.cost_seconds = share_left * st.whole_cost_seconds;
       st.timed = true;
       ++timed;
       log << " " << ms << " ms/frame\n";

@@ -14,6 +14,7 @@
 #include "config/ConfigErrors.hpp"
 #include "config/RunCheck.hpp"
 #include "fldsim/error.hpp"
+#include "io/Checkpoint.hpp"
 #include "plugins/PluginRegistry.hpp"
 #include "run/Experiment.hpp"
 #include "sweep/StoredRun.hpp"
@@ -101,6 +102,16 @@ std::string format_duration(double s) {
   return buffer;
 }
 
+double share_left(const std::string& checkpoint, std::int64_t frames, bool adaptive) {
+  if (adaptive || frames <= 0) return 1.0;
+  try {
+    const std::int64_t done = read_checkpoint(checkpoint).step;
+    return std::clamp(double(frames - done) / double(frames), 0.0, 1.0);
+  } catch (const Error&) {
+    return 1.0;
+  }
+}
+
 std::vector<PointState> check_sweep_points(const SweepPlan& plan) {
   std::vector<PointState> states;
   ConfigErrors errors(plan.file);
@@ -160,6 +171,9 @@ std::vector<PointState> check_sweep_points(const SweepPlan& plan) {
       st.steps = report.steps;
       st.nodes = report.nodes;
       st.cost_seconds = estimated_cpu_seconds(st.hydro, st.steps, st.nodes, ex.brownian);
+      st.whole_cost_seconds = st.cost_seconds;
+      if (st.status == PointStatus::Resume)
+        st.cost_seconds *= share_left(st.checkpoint, st.steps, ex.dt_auto);
       st.adaptive = ex.dt_auto;
       st.frame = ex.dt;
       for (const auto& o : ex.observers) st.observer_every.push_back(o.every);
@@ -204,7 +218,7 @@ void print_sweep_listing(const SweepPlan& plan, const std::vector<PointState>& p
         << "  " << std::setw(12) << st.steps << std::setw(8) << st.nodes << "  "
         << (st.adaptive && !st.timed ? ">= " : "") << format_duration(st.cost_seconds)
         << (st.timed ? " (timed)" : "") << "\n";
-    all += st.cost_seconds;
+    all += st.whole_cost_seconds;
     if (st.status != PointStatus::Done) todo += st.cost_seconds;
     ++counts[int(st.status)];
   }

@@ -30,10 +30,11 @@ struct PointState {
   std::int64_t steps = 0, nodes = 0;
   std::string hydro;
   std::vector<std::int64_t> observer_every;  // each observer's sampling period, in frames
-  double frame = 0.0;         // the frame (dt, or dt_max with dt: auto), in the run's time unit
-  double cost_seconds = 0.0;  // estimated CPU seconds (cost model, docs/sweep.md)
-  bool adaptive = false;      // dt: auto: the model counts one step per frame, a lower bound
-  bool timed = false;         // cost_seconds from timed frames of the point (--timed; StepProbe.hpp)
+  double frame = 0.0;               // the frame (dt, or dt_max with dt: auto), in the run's time unit
+  double cost_seconds = 0.0;        // estimated CPU seconds still to run (cost model, docs/sweep.md)
+  double whole_cost_seconds = 0.0;  // the same for the whole point (differs for Resume)
+  bool adaptive = false;            // dt: auto: the model counts one step per frame, a lower bound
+  bool timed = false;               // cost_seconds from timed frames of the point (--timed; StepProbe.hpp)
 };
 
 // Validates every point (all problems of all points at once: ConfigError with one line each,
@@ -43,6 +44,11 @@ std::vector<PointState> check_sweep_points(const SweepPlan& plan);
 // The cost model: CPU seconds for `steps` frames of `nodes` spheres with this hydro plugin and
 // `threads` threads (docs/sweep.md gives its calibration).
 double estimated_cpu_seconds(const std::string& hydro, std::int64_t steps, std::int64_t nodes, bool brownian);
+
+// The share of a resumed point's frames still to run, for its estimate: 1 - the checkpoint's step
+// / frames (fixed dt: one step per frame). 1 for dt: auto (steps are not frames) or a checkpoint
+// that cannot be read (check_run reports it).
+double share_left(const std::string& checkpoint, std::int64_t frames, bool adaptive);
 
 // "12 s", "3.4 min", "2.1 h".
 std::string format_duration(double seconds);
