@@ -102,6 +102,8 @@ skip_pair observers observers=all1 -- observers=all100
 skip_pair rebuild   skin=0 observers=none -- skin=0.3 observers=none
 skip_pair precond   observers=none "hydro_params={preconditioner: block_jacobi}" -- \
                     observers=none "hydro_params={preconditioner: incomplete_cholesky}"
+skip_pair dilu      observers=none "hydro_params={preconditioner: incomplete_cholesky}" -- \
+                    observers=none "hydro_params={preconditioner: eisenstat_dilu}"
 
 echo "== parts of a step (Google Benchmark)"
 min_time=0.2; [ "$quick" = 1 ] && min_time=0.02

@@ -9,6 +9,7 @@
 
 #include "fldsim/block_sparse.hpp"
 #include "linalg/BlockIncompleteCholesky.hpp"
+#include "linalg/EisenstatDilu.hpp"
 
 using fldsim::BlockPCG;
 using fldsim::BlockSparseMatrix;
@@ -128,7 +129,84 @@ TEST_P(BlockPCGWith, MatchesDenseLUWithinConditionTimesResidual) {
 
 INSTANTIATE_TEST_SUITE_P(Preconditioners, BlockPCGWith,
                          ::testing::Values(fldsim::Preconditioner::BlockJacobi,
-                                           fldsim::Preconditioner::IncompleteCholesky));
+                                           fldsim::Preconditioner::IncompleteCholesky,
+                                           fldsim::Preconditioner::EisenstatDilu));
+
+// Block D-ILU, M = (P + U^T) P^-1 (P + U): its block diagonal is A's (the pivots are chosen so), and
+// on a chain pattern U^T P^-1 U has no off-diagonal blocks, so M = A and the Eisenstat-transformed CG
+// converges in one iteration (to round-off: every product is in double). The dense M is rebuilt
+// from the pieces the solver applies: the forward and backward sweeps and P.
+TEST(EisenstatDilu, KeepsTheDiagonalAndIsExactOnAChain) {
+  const BlockSparseMatrix A = random_spd(30, 0.15, 71);
+  fldsim::EisenstatDilu dilu;
+  ASSERT_TRUE(dilu.factorize(A));
+  dilu.bind(A);
+  const std::size_t m = A.size();
+  // Columns of L^-1 = (P + U^T)^-1 and L^-T = (P + U)^-1, and of P.
+  Eigen::MatrixXd Linv(m, m), LinvT(m, m), P(m, m);
+  Eigen::VectorXd e = Eigen::VectorXd::Zero(Eigen::Index(m));
+  for (std::size_t k = 0; k < m; ++k) {
+    e[Eigen::Index(k)] = 1.0;
+    dilu.forward(A, e.data(), Linv.col(Eigen::Index(k)).data());
+    dilu.backward(A, e.data(), LinvT.col(Eigen::Index(k)).data());
+    dilu.pivot_times(e.data(), P.col(Eigen::Index(k)).data());
+    e[Eigen::Index(k)] = 0.0;
+  }
+  EXPECT_LT((Linv.transpose() - LinvT).norm() / LinvT.norm(), 1e-13) << "the two sweeps are transposes";
+  // M = L P^-1 L^T, from the inverses: M^-1 = L^-T P L^-1.
+  const Eigen::MatrixXd M = (LinvT * P * Linv).inverse();
+  const Eigen::MatrixXd D = A.dense();
+  double worst_diag = 0.0, fill = 0.0;
+  for (std::uint32_t i = 0; i < A.blocks(); ++i) {
+    worst_diag = std::max(worst_diag, (M.block<6, 6>(6 * i, 6 * i) - D.block<6, 6>(6 * i, 6 * i)).norm());
+    for (std::uint32_t j = i + 1; j < A.blocks(); ++j)
+      fill = std::max(fill, (M.block<6, 6>(6 * i, 6 * j) - D.block<6, 6>(6 * i, 6 * j)).norm());
+  }
+  EXPECT_LT(worst_diag, 1e-9) << "diag(M) = diag(A) (dense inversion round-off only)";
+  EXPECT_GT(fill, 0.05) << "the pattern has cycles: M is genuinely incomplete";
+  // The transformed operator: L^-1 A L^-T v, through Eisenstat's identity, against the dense product.
+  const Eigen::VectorXd v = random_vector(m, 73);
+  Eigen::VectorXd q(m), t(m);
+  dilu.operator_times(A, v.data(), q.data(), t.data());
+  const Eigen::VectorXd ref = Linv * D * LinvT * v;
+  EXPECT_LT((q - ref).norm() / ref.norm(), 1e-12);
+
+  // A chain: no cycles, M = A.
+  const std::size_t n = 20;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> chain;
+  for (std::uint32_t i = 0; i + 1 < n; ++i) chain.push_back({i, i + 1});
+  BlockSparseMatrix C;
+  C.set_pattern(n, chain);
+  std::mt19937_64 rng(75);
+  std::normal_distribution<double> g;
+  for (std::size_t i = 0; i < n; ++i) C.diagonal(i) = 30.0 * Mat6::Identity();
+  for (std::uint32_t i = 0; i + 1 < n; ++i)
+    C.upper(C.find(i, i + 1)) = Mat6::NullaryExpr([&]() { return g(rng); });
+  const Eigen::VectorXd b = random_vector(C.size(), 77);
+  BlockPCG pcg(fldsim::Preconditioner::EisenstatDilu);
+  pcg.prepare(C);
+  ASSERT_EQ(pcg.active(), fldsim::Preconditioner::EisenstatDilu);
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(C.size());
+  const auto res = pcg.solve(C, b.data(), x.data(), 1e-12, 10);
+  EXPECT_TRUE(res.converged);
+  EXPECT_EQ(res.iterations, 1);
+  EXPECT_LT((b - C.dense() * x).norm() / b.norm(), 1e-12);
+}
+
+// P may come from an older matrix (ResistanceModel keeps it while R moves little): with K rebound
+// to the matrix being solved, CG still converges to that matrix's solution.
+TEST(EisenstatDilu, StalePivotsStillSolveTheCurrentMatrix) {
+  const BlockSparseMatrix old_A = random_spd(60, 0.06, 81);
+  BlockSparseMatrix A = old_A;
+  for (std::size_t i = 0; i < A.blocks(); ++i) A.diagonal(i) *= 1.3;
+  const Eigen::VectorXd b = random_vector(A.size(), 83);
+  BlockPCG pcg(fldsim::Preconditioner::EisenstatDilu);
+  pcg.prepare(old_A);
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(A.size());
+  const auto res = pcg.solve(A, b.data(), x.data(), 1e-10, 500);
+  ASSERT_TRUE(res.converged);
+  EXPECT_LE((b - A.dense() * x).norm() / b.norm(), 1e-10 * (1.0 + 1e-6));
+}
 
 // IC(0) drops only fill outside the pattern; a block tridiagonal (chain) pattern has none, so the
 // factor is the exact Cholesky factor and PCG converges in one iteration to round-off.
@@ -219,18 +297,21 @@ TEST(BlockIncompleteCholesky, FactorAndSolveAreIndependentOfThreadCount) {
   const BlockSparseMatrix A = random_spd(300, 0.02, 61);
   const Eigen::VectorXd b = random_vector(A.size(), 63);
   const int threads = omp_get_max_threads();
-  auto solve = [&](int nthreads) {
-    omp_set_num_threads(nthreads);
-    BlockPCG pcg(fldsim::Preconditioner::IncompleteCholesky);
-    pcg.prepare(A);
-    EXPECT_EQ(pcg.active(), fldsim::Preconditioner::IncompleteCholesky);
-    Eigen::VectorXd x = Eigen::VectorXd::Zero(A.size());
-    const auto res = pcg.solve(A, b.data(), x.data(), 1e-10, 500);
-    EXPECT_TRUE(res.converged);
-    return x;
-  };
-  const Eigen::VectorXd one = solve(1), two = solve(std::max(2, threads));
-  omp_set_num_threads(threads);
-  EXPECT_EQ((one - two).cwiseAbs().maxCoeff(), 0.0);
+  for (const auto kind :
+       {fldsim::Preconditioner::IncompleteCholesky, fldsim::Preconditioner::EisenstatDilu}) {
+    auto solve = [&](int nthreads) {
+      omp_set_num_threads(nthreads);
+      BlockPCG pcg(kind);
+      pcg.prepare(A);
+      EXPECT_EQ(pcg.active(), kind);
+      Eigen::VectorXd x = Eigen::VectorXd::Zero(A.size());
+      const auto res = pcg.solve(A, b.data(), x.data(), 1e-10, 500);
+      EXPECT_TRUE(res.converged);
+      return x;
+    };
+    const Eigen::VectorXd one = solve(1), two = solve(std::max(2, threads));
+    omp_set_num_threads(threads);
+    EXPECT_EQ((one - two).cwiseAbs().maxCoeff(), 0.0) << "preconditioner " << int(kind);
+  }
 }
 #endif

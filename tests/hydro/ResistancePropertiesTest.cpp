@@ -220,7 +220,10 @@ TEST(ResistanceModel, AssemblyNoiseAndSolveAreIndependentOfThreadCount) {
 // for a large move, and (4) survive a checkpoint: a fresh model given the first one's
 // save_state() solves bit-identically to it (as `--resume` needs), while a fresh model without it
 // does not; a state that does not fit is refused.
-TEST(ResistanceModel, FactorIsReusedWhileRMovesLittleAndSurvivesACheckpoint) {
+// For both preconditioners that are carried (IC(0)'s factor, D-ILU's pivots).
+class FactorReuseWith : public ::testing::TestWithParam<Preconditioner> {};
+
+TEST_P(FactorReuseWith, FactorIsReusedWhileRMovesLittleAndSurvivesACheckpoint) {
   const Config setup = kSetups[0];
   auto configuration = [&](unsigned seed) {
     System s(shape_of(setup), setup.n, setup.box, physics(1.0, 1.0, 0.3));
@@ -239,6 +242,7 @@ TEST(ResistanceModel, FactorIsReusedWhileRMovesLittleAndSurvivesACheckpoint) {
     ModelSettings s = lubrication_settings();
     s.tolerance = 1e-8;
     s.refactor_threshold = threshold;
+    s.preconditioner = GetParam();
     auto m = std::make_unique<ResistanceModel>(s);
     HydroRequest req;
     m->configure(A, req);
@@ -311,6 +315,10 @@ TEST(ResistanceModel, FactorIsReusedWhileRMovesLittleAndSurvivesACheckpoint) {
   const auto [x_D_own, own_D] = own_factor(D);
   for (std::size_t k = 0; k < F.size(); ++k) ASSERT_EQ(x_D[k], x_D_own[k]) << k;
 }
+
+INSTANTIATE_TEST_SUITE_P(ResistanceModel, FactorReuseWith,
+                         ::testing::Values(Preconditioner::IncompleteCholesky,
+                                           Preconditioner::EisenstatDilu));
 
 namespace {
 // Sphere pairs two ways: the closed forms of centred node pairs (LubricationPair::centred_*, the

@@ -62,7 +62,9 @@ class FLDSIM_VISIBLE BlockSparseMatrix {
   std::vector<std::int64_t> fill_;
 };
 
-enum class Preconditioner { BlockJacobi, IncompleteCholesky };
+// EisenstatDilu: block D-ILU applied with Eisenstat's trick (framework/src/linalg/EisenstatDilu.hpp):
+// CG on the transformed system, no product with A inside the iteration.
+enum class Preconditioner { BlockJacobi, IncompleteCholesky, EisenstatDilu };
 
 // Preconditioned conjugate gradients for A x = b with A symmetric positive definite. Work vectors
 // are kept between calls; x holds the warm start on entry. Converged when |b - A x| <= tol |b|.
@@ -89,6 +91,8 @@ class FLDSIM_VISIBLE BlockPCG {
   Preconditioner active() const;
 
  private:
+  Result solve_transformed(const BlockSparseMatrix& A, double* x, double tolerance, int max_iterations,
+                           double bnorm, Result result);
   struct Workspace;
   std::unique_ptr<Workspace> w_;
 };

@@ -93,4 +93,19 @@ inline void subtract_transposed_product(double* C, const double* A, const double
   for (int c = 0; c < 6; ++c) add_to_memory<-1>(C + 6 * c, transposed_product(A, Acc6::load(B + 6 * c)));
 }
 
+// Inverse of a lower-triangular 6x6 block by forward substitution (Eigen's triangular solve with a
+// matrix right-hand side takes its general blocked path at this size, several times slower).
+inline Eigen::Matrix<double, 6, 6> lower_inverse(const Eigen::Matrix<double, 6, 6>& L) {
+  Eigen::Matrix<double, 6, 6> X = Eigen::Matrix<double, 6, 6>::Zero();
+  for (int c = 0; c < 6; ++c) {
+    X(c, c) = 1.0 / L(c, c);
+    for (int r = c + 1; r < 6; ++r) {
+      double s = 0.0;
+      for (int k = c; k < r; ++k) s += L(r, k) * X(k, c);
+      X(r, c) = -s / L(r, r);
+    }
+  }
+  return X;
+}
+
 }  // namespace fldsim::linalg

@@ -6,56 +6,12 @@
 #include <algorithm>
 #include <atomic>
 #include <memory>
-#include <thread>
 
 #include "linalg/Block6Kernels.hpp"
 #include "linalg/GrowOnly.hpp"
+#include "linalg/LevelSchedule.hpp"
 
 namespace fldsim {
-namespace {
-// Inverse of a lower-triangular 6x6 block by forward substitution (Eigen's triangular solve with a
-// matrix right-hand side takes its general blocked path at this size, several times slower).
-Mat6 lower_inverse(const Mat6& L) {
-  Mat6 X = Mat6::Zero();
-  for (int c = 0; c < 6; ++c) {
-    X(c, c) = 1.0 / L(c, c);
-    for (int r = c + 1; r < 6; ++r) {
-      double s = 0.0;
-      for (int k = c; k < r; ++k) s += L(r, k) * X(k, c);
-      X(r, c) = -s / L(r, r);
-    }
-  }
-  return X;
-}
-
-// Spin until another thread has published `flag` >= epoch; yield after a while, so a descheduled
-// owner gets the core back on an oversubscribed machine.
-void wait_until(const std::atomic<std::uint64_t>& flag, std::uint64_t epoch) {
-  for (int spins = 0; flag.load(std::memory_order_acquire) < epoch; ++spins)
-    if (spins > 2000) std::this_thread::yield();
-}
-
-// Level of each row (0 for rows without dependencies, else 1 + the deepest dependency), visiting
-// rows so that dependencies come first; then the positions grouped by level, rows ascending.
-// level and fill are scratch.
-template <class Dependencies>
-void schedule(std::size_t n, bool descending, Dependencies&& each_dependency,
-              std::vector<std::int64_t>& level_start, std::vector<std::uint32_t>& row,
-              std::vector<std::uint32_t>& level, std::vector<std::int64_t>& fill) {
-  level.assign(n, 0);
-  for (std::size_t t = 0; t < n; ++t) {
-    const std::size_t i = descending ? n - 1 - t : t;
-    each_dependency(i, [&](std::size_t k) { level[i] = std::max(level[i], level[k] + 1); });
-  }
-  const std::uint32_t top = n == 0 ? 0 : *std::max_element(level.begin(), level.end());
-  linalg::fill_grow_only(level_start, std::size_t(top) + 2, std::int64_t(0));
-  for (const std::uint32_t l : level) ++level_start[l + 1];
-  for (std::size_t l = 0; l + 1 < level_start.size(); ++l) level_start[l + 1] += level_start[l];
-  row.resize(n);
-  linalg::copy_grow_only(fill, level_start.begin(), level_start.end() - 1);
-  for (std::size_t i = 0; i < n; ++i) row[fill[level[i]]++] = std::uint32_t(i);
-}
-}  // namespace
 
 void BlockIncompleteCholesky::analyse(const BlockSparseMatrix& A) {
   const std::size_t n = A.blocks();
@@ -68,19 +24,19 @@ void BlockIncompleteCholesky::analyse(const BlockSparseMatrix& A) {
   linalg::resize_grow_only(upper_, col_.size());
   inv_lower_.resize(n);
   // Forward (and factorisation): row i needs the rows k < i with a block (k, i).
-  schedule(
+  linalg::schedule(
       n, false,
       [&](std::size_t i, auto&& depend) {
         for (std::int64_t c = col_start_[i]; c < col_start_[i + 1]; ++c) depend(by_col_row_[c]);
       },
-      forward_.level_start, forward_.row, level_scratch_, fill_scratch_);
+      forward_, level_scratch_, fill_scratch_);
   // Backward: row i needs the rows j > i of its own blocks (i, j).
-  schedule(
+  linalg::schedule(
       n, true,
       [&](std::size_t i, auto&& depend) {
         for (std::int64_t a = row_start_[i]; a < row_start_[i + 1]; ++a) depend(col_[a]);
       },
-      backward_.level_start, backward_.row, level_scratch_, fill_scratch_);
+      backward_, level_scratch_, fill_scratch_);
   pattern_id_ = A.pattern_id();
 }
 
@@ -109,7 +65,7 @@ bool BlockIncompleteCholesky::factor_row(const BlockSparseMatrix& A, std::size_t
   }
   const Eigen::LLT<Mat6> llt(D);
   if (llt.info() != Eigen::Success) return false;
-  inv_lower_[i] = lower_inverse(llt.matrixL());
+  inv_lower_[i] = linalg::lower_inverse(llt.matrixL());
   for (std::int64_t a = first; a < last; ++a) upper_[a] = (inv_lower_[i] * upper_[a]).eval();
   return true;
 }
@@ -144,7 +100,7 @@ bool BlockIncompleteCholesky::factorize(const BlockSparseMatrix& A) {
       for (std::int64_t s = forward_.level_start[l]; s < forward_.level_start[l + 1]; ++s) {
         const std::size_t i = forward_.row[s];
         for (std::int64_t c = col_start_[i]; c < col_start_[i + 1]; ++c)
-          wait_until(done[by_col_row_[c]], epoch);
+          linalg::wait_until(done[by_col_row_[c]], epoch);
         if (good.load(std::memory_order_relaxed) && !factor_row(A, i))
           good.store(false, std::memory_order_relaxed);
         done[i].store(epoch, std::memory_order_release);
@@ -235,7 +191,7 @@ void BlockIncompleteCholesky::apply(const double* r, double* z) const {
       for (std::int64_t s = forward_.level_start[l]; s < forward_.level_start[l + 1]; ++s) {
         const std::size_t i = forward_.row[s];
         for (std::int64_t c = col_start_[i]; c < col_start_[i + 1]; ++c)
-          wait_until(done[by_col_row_[c]], fwd);
+          linalg::wait_until(done[by_col_row_[c]], fwd);
         forward_row(i, r, z);
         done[i].store(fwd, std::memory_order_release);
       }
@@ -244,8 +200,9 @@ void BlockIncompleteCholesky::apply(const double* r, double* z) const {
 #pragma omp for schedule(static) nowait
       for (std::int64_t s = backward_.level_start[l]; s < backward_.level_start[l + 1]; ++s) {
         const std::size_t i = backward_.row[s];
-        wait_until(done[i], fwd);  // its own forward result
-        for (std::int64_t a = row_start_[i]; a < row_start_[i + 1]; ++a) wait_until(done[col_[a]], bwd);
+        linalg::wait_until(done[i], fwd);  // its own forward result
+        for (std::int64_t a = row_start_[i]; a < row_start_[i + 1]; ++a)
+          linalg::wait_until(done[col_[a]], bwd);
         backward_row(i, z);
         done[i].store(bwd, std::memory_order_release);
       }

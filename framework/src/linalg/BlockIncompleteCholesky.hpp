@@ -9,6 +9,7 @@
 
 #include "fldsim/block_sparse.hpp"
 #include "linalg/Block6Kernels.hpp"
+#include "linalg/LevelSchedule.hpp"
 
 namespace fldsim {
 
@@ -32,12 +33,7 @@ class FLDSIM_VISIBLE BlockIncompleteCholesky {
   std::size_t backward_levels() const { return backward_.levels(); }
 
  private:
-  // Rows row[level_start[l]] .. row[level_start[l+1] - 1] form level l, ascending within it.
-  struct Levels {
-    std::vector<std::int64_t> level_start;
-    std::vector<std::uint32_t> row;
-    std::size_t levels() const { return level_start.empty() ? 0 : level_start.size() - 1; }
-  };
+  using Levels = linalg::Levels;
   void analyse(const BlockSparseMatrix& A);
   bool factor_row(const BlockSparseMatrix& A, std::size_t i);
   void forward_row(std::size_t i, const double* r, double* z) const;

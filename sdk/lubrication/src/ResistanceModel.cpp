@@ -68,15 +68,21 @@ void describe_lubrication_params(ParamSchema& s) {
   s.number("tolerance", 1e-6, "", "relative residual of the conjugate-gradient solve").greater(0.0).less(1.0);
   s.integer("max_iterations", 1000L, "", "conjugate-gradient iteration limit").at_least(1).at_most(1000000);
   s.number("refactor_threshold", 0.15, "",
-           "an assembly reuses the last CG preconditioner (IC(0) factor), within the step and across "
-           "steps, while the diagonal blocks of R have changed by at most this fraction since it was "
-           "built (Frobenius norm over all bodies; 0: rebuild at every assembly). The matrix it was "
-           "built from is saved in checkpoints, so --resume stays bit-exact")
+           "an assembly reuses the last CG preconditioner (IC(0) factor or D-ILU pivots), within the "
+           "step and across steps, while R has moved by at most this fraction since it was built: its "
+           "diagonal blocks in one Frobenius norm over all bodies (incomplete_cholesky), or each body's "
+           "block row against its diagonal block (eisenstat_dilu, where the default is 0.3); 0: rebuild "
+           "at every assembly. The matrix it was built from is saved in checkpoints, so --resume stays "
+           "bit-exact")
       .at_least(0.0)
       .at_most(10.0);
-  s.choice("preconditioner", std::string("incomplete_cholesky"), {"incomplete_cholesky", "block_jacobi"},
-           "CG preconditioner: block IC(0) on the pair pattern (fewest iterations; sweeps parallel by "
-           "dependency levels) or block Jacobi (parallel; more iterations)");
+  s.choice("preconditioner", std::string("incomplete_cholesky"),
+           {"incomplete_cholesky", "eisenstat_dilu", "block_jacobi"},
+           "CG preconditioner: incomplete_cholesky (block IC(0) on the pair pattern), eisenstat_dilu "
+           "(block D-ILU on the pair pattern applied with Eisenstat's trick: no product with R inside an "
+           "iteration, so an iteration costs about 0.7 of IC(0)'s, but more iterations where R moves "
+           "fast: 8 % faster to 3 % slower per step by scene, bench/README.md \"Eisenstat\") or "
+           "block_jacobi (more iterations); the sweeps of the first two run parallel by dependency levels");
 }
 
 bool lammps_conventions(const Params& p) {
@@ -112,9 +118,15 @@ ModelSettings read_lubrication_params(const Params& p) {
     p.fail("taper_width", "must be smaller than cutoff - 2 (the taper would reach contact)");
   s.tolerance = p.number("tolerance");
   s.max_iterations = int(p.integer("max_iterations"));
-  s.refactor_threshold = p.number("refactor_threshold");
-  s.preconditioner = p.text("preconditioner") == "block_jacobi" ? Preconditioner::BlockJacobi
-                                                                : Preconditioner::IncompleteCholesky;
+  const std::string& preconditioner = p.text("preconditioner");
+  s.preconditioner = preconditioner == "block_jacobi"     ? Preconditioner::BlockJacobi
+                     : preconditioner == "eisenstat_dilu" ? Preconditioner::EisenstatDilu
+                                                          : Preconditioner::IncompleteCholesky;
+  // D-ILU's threshold is per block row (reuse_factor); 0.3 measured over five scenes (bench/README.md,
+  // "Eisenstat": 0.2 refactors too often on spheres, 0.5 too seldom for dicolloids at Pe 1000).
+  s.refactor_threshold = p.given("refactor_threshold") || s.preconditioner != Preconditioner::EisenstatDilu
+                             ? p.number("refactor_threshold")
+                             : 0.3;
   return s;
 }
 
@@ -222,12 +234,37 @@ void ResistanceModel::assemble(const System& system, const NodePairList& pairs) 
 bool ResistanceModel::reuse_factor() const {
   if (!has_factor_ || settings_.refactor_threshold <= 0.0 || factor_source_.blocks() != A_.blocks())
     return false;
+  const double t2 = settings_.refactor_threshold * settings_.refactor_threshold;
+  if (settings_.preconditioner == Preconditioner::EisenstatDilu) {
+    // Block row by block row: the old pivots meet the current off-diagonal blocks (EisenstatDilu.hpp),
+    // so what spoils a body's pivot is any change in its row, its couplings included (a pair closing
+    // in, or dicolloids turning at high Pe), whatever the other bodies do:
+    // |dR_ii|^2 + sum_j |dR_ij|^2 <= t^2 |R_ii(factor)|^2 for every body i (a new pair counts whole).
+    const std::size_t n = A_.blocks();
+    row_change_.assign(n, 0.0);
+    const auto& row_start = A_.row_start();
+    const auto& col = A_.col();
+    for (std::size_t i = 0; i < n; ++i) {
+      row_change_[i] += (A_.diagonal(i) - factor_source_.diagonal(i)).squaredNorm();
+      for (std::int64_t a = row_start[i]; a < row_start[i + 1]; ++a) {
+        const std::uint32_t j = col[std::size_t(a)];
+        const std::int64_t old = factor_source_.find(std::uint32_t(i), j);
+        const double c =
+            old < 0 ? A_.upper(a).squaredNorm() : (A_.upper(a) - factor_source_.upper(old)).squaredNorm();
+        row_change_[i] += c;
+        row_change_[j] += c;
+      }
+    }
+    for (std::size_t i = 0; i < n; ++i)
+      if (row_change_[i] > t2 * factor_source_.diagonal(i).squaredNorm()) return false;
+    return true;
+  }
   double change = 0.0, size = 0.0;
   for (std::size_t i = 0; i < A_.blocks(); ++i) {
     change += (A_.diagonal(i) - factor_source_.diagonal(i)).squaredNorm();
     size += factor_source_.diagonal(i).squaredNorm();
   }
-  return change <= settings_.refactor_threshold * settings_.refactor_threshold * size;
+  return change <= t2 * size;
 }
 
 // The factor's source matrix: [n, pairs, (i, j) of each upper block, the n diagonal blocks, the
