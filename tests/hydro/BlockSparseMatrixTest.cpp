@@ -47,6 +47,21 @@ BlockSparseMatrix random_spd(std::size_t n, double density, unsigned seed) {
   return A;
 }
 
+// n bodies in a chain (blocks (i, i+1) only: no cycles, so no fill for IC(0) or D-ILU), diagonal
+// 30 I, off-diagonal blocks N(0, 1): SPD by diagonal dominance.
+BlockSparseMatrix chain_matrix(std::size_t n, unsigned seed) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> chain;
+  for (std::uint32_t i = 0; i + 1 < n; ++i) chain.push_back({i, i + 1});
+  BlockSparseMatrix A;
+  A.set_pattern(n, chain);
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> g;
+  for (std::size_t i = 0; i < n; ++i) A.diagonal(i) = 30.0 * Mat6::Identity();
+  for (std::uint32_t i = 0; i + 1 < n; ++i)
+    A.upper(A.find(i, i + 1)) = Mat6::NullaryExpr([&]() { return g(rng); });
+  return A;
+}
+
 Eigen::VectorXd random_vector(std::size_t n, unsigned seed) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -172,16 +187,7 @@ TEST(EisenstatDilu, KeepsTheDiagonalAndIsExactOnAChain) {
   EXPECT_LT((q - ref).norm() / ref.norm(), 1e-12);
 
   // A chain: no cycles, M = A.
-  const std::size_t n = 20;
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> chain;
-  for (std::uint32_t i = 0; i + 1 < n; ++i) chain.push_back({i, i + 1});
-  BlockSparseMatrix C;
-  C.set_pattern(n, chain);
-  std::mt19937_64 rng(75);
-  std::normal_distribution<double> g;
-  for (std::size_t i = 0; i < n; ++i) C.diagonal(i) = 30.0 * Mat6::Identity();
-  for (std::uint32_t i = 0; i + 1 < n; ++i)
-    C.upper(C.find(i, i + 1)) = Mat6::NullaryExpr([&]() { return g(rng); });
+  const BlockSparseMatrix C = chain_matrix(20, 75);
   const Eigen::VectorXd b = random_vector(C.size(), 77);
   BlockPCG pcg(fldsim::Preconditioner::EisenstatDilu);
   pcg.prepare(C);
@@ -211,19 +217,7 @@ TEST(EisenstatDilu, StalePivotsStillSolveTheCurrentMatrix) {
 // IC(0) drops only fill outside the pattern; a block tridiagonal (chain) pattern has none, so the
 // factor is the exact Cholesky factor and PCG converges in one iteration to round-off.
 TEST(BlockIncompleteCholesky, IsExactWithoutFill) {
-  const std::size_t n = 20;
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> chain;
-  for (std::uint32_t i = 0; i + 1 < n; ++i) chain.push_back({i, i + 1});
-  BlockSparseMatrix A;
-  A.set_pattern(n, chain);
-  std::mt19937_64 rng(41);
-  std::normal_distribution<double> g;
-  for (std::size_t i = 0; i < n; ++i) A.diagonal(i) = 30.0 * fldsim::Mat6::Identity();
-  for (std::uint32_t i = 0; i + 1 < n; ++i) {
-    fldsim::Mat6 c;
-    for (int k = 0; k < 36; ++k) c(k / 6, k % 6) = g(rng);
-    A.upper(A.find(i, i + 1)) = c;
-  }
+  const BlockSparseMatrix A = chain_matrix(20, 41);
   const Eigen::VectorXd b = random_vector(A.size(), 43);
   BlockPCG pcg(fldsim::Preconditioner::IncompleteCholesky);
   pcg.prepare(A);

@@ -70,16 +70,6 @@ bool BlockIncompleteCholesky::factor_row(const BlockSparseMatrix& A, std::size_t
   return true;
 }
 
-std::atomic<std::uint64_t>* BlockIncompleteCholesky::done_flags(std::size_t n) const {
-  if (done_size_ != n) {  // once per body count: the flags outlive pattern changes
-    done_ = std::make_unique<std::atomic<std::uint64_t>[]>(n);
-    for (std::size_t i = 0; i < n; ++i) done_[i].store(0, std::memory_order_relaxed);
-    done_size_ = n;
-    epoch_ = 0;
-  }
-  return done_.get();
-}
-
 bool BlockIncompleteCholesky::factorize(const BlockSparseMatrix& A) {
   if (pattern_id_ != A.pattern_id() || inv_lower_.size() != A.blocks()) analyse(A);
   const std::int64_t n = std::int64_t(A.blocks());
@@ -91,8 +81,8 @@ bool BlockIncompleteCholesky::factorize(const BlockSparseMatrix& A) {
     // By levels without barriers, as in apply(): a row waits only for the rows it reads. A row
     // whose pivot fails is still published (its blocks are not used: factorize() returns false).
     std::atomic<bool> good{true};
-    std::atomic<std::uint64_t>* done = done_flags(std::size_t(n));
-    const std::uint64_t epoch = ++epoch_;
+    std::atomic<std::uint64_t>* done = flags_.rows(std::size_t(n));
+    const std::uint64_t epoch = flags_.epochs(1);
     const std::int64_t levels = std::int64_t(forward_.levels());
 #pragma omp parallel
     for (std::int64_t l = 0; l < levels; ++l) {
@@ -176,13 +166,12 @@ void BlockIncompleteCholesky::apply(const double* r, double* z) const {
     return;
   }
   // Levels, without barriers between them: each thread takes its static share of every level in
-  // level order and waits only for the rows it reads (flag `done_[k]` >= this sweep's epoch), so
+  // level order and waits only for the rows it reads (row k's flag >= this sweep's epoch), so
   // a level costs a barrier only where a dependency really crosses threads (a barrier is 1.5 us on
   // some VMs, and a sweep has ~30 levels). Each row is still summed in its fixed order by whichever
   // thread owns it, so z does not depend on the thread count.
-  std::atomic<std::uint64_t>* done = done_flags(std::size_t(n));
-  const std::uint64_t fwd = epoch_ + 1, bwd = epoch_ + 2;
-  epoch_ += 2;
+  std::atomic<std::uint64_t>* done = flags_.rows(std::size_t(n));
+  const std::uint64_t fwd = flags_.epochs(2), bwd = fwd + 1;
   const std::int64_t forward = std::int64_t(forward_.levels()), backward = std::int64_t(backward_.levels());
 #pragma omp parallel
   {

@@ -55,12 +55,9 @@ class FLDSIM_VISIBLE BlockIncompleteCholesky {
   std::vector<Mat6f> pivot_f_, upper_f_;
   std::vector<Mat6f> lower_f_;  // upper_f_ in the transposed index's order (by_col); threads > 1
   bool gathered_ = false;       // lower_f_ holds the current factor
-  // Multi-threaded factorisation and sweeps: done_[i] is the epoch of the last pass (factorisation,
-  // forward or backward sweep) that finished row i; each pass has a larger epoch than the last.
-  std::atomic<std::uint64_t>* done_flags(std::size_t n) const;
-  mutable std::unique_ptr<std::atomic<std::uint64_t>[]> done_;
-  mutable std::size_t done_size_ = 0;
-  mutable std::uint64_t epoch_ = 0;
+  // Multi-threaded factorisation and sweeps: row i's flag is the epoch of the last pass
+  // (factorisation, forward or backward sweep) that finished it.
+  mutable linalg::RowFlags flags_;
   // analyse() scratch, kept so that a pattern change does not allocate.
   std::vector<std::uint32_t> level_scratch_;
   std::vector<std::int64_t> fill_scratch_;

@@ -73,16 +73,6 @@ void EisenstatDilu::bind(const BlockSparseMatrix& A) {
   pattern_id_ = A.pattern_id();
 }
 
-std::atomic<std::uint64_t>* EisenstatDilu::done_flags(std::size_t n) const {
-  if (done_size_ != n) {  // once per body count: the flags outlive pattern changes
-    done_ = std::make_unique<std::atomic<std::uint64_t>[]>(n);
-    for (std::size_t i = 0; i < n; ++i) done_[i].store(0, std::memory_order_relaxed);
-    done_size_ = n;
-    epoch_ = 0;
-  }
-  return done_.get();
-}
-
 // out_i = P_i^-1 (in_i - sum_{j > i} A_ij out_j).
 void EisenstatDilu::backward_row(const BlockSparseMatrix& A, std::size_t i, const double* in,
                                  double* out) const {
@@ -102,8 +92,8 @@ void EisenstatDilu::backward(const BlockSparseMatrix& A, const double* in, doubl
     for (std::size_t i = n; i-- > 0;) backward_row(A, i, in, out);
     return;
   }
-  std::atomic<std::uint64_t>* done = done_flags(n);
-  const std::uint64_t epoch = ++epoch_;
+  std::atomic<std::uint64_t>* done = flags_.rows(n);
+  const std::uint64_t epoch = flags_.epochs(1);
   const auto& row_start = A.row_start();
   const auto& col = A.col();
   const std::int64_t levels = std::int64_t(backward_.levels());
@@ -190,9 +180,8 @@ void EisenstatDilu::operator_times_by_levels(const BlockSparseMatrix& A, const d
                                              double* t) const {
   const std::size_t n = pivot_.size();
   linalg::resize_grow_only(s_, 6 * n);
-  std::atomic<std::uint64_t>* done = done_flags(n);
-  const std::uint64_t bwd = epoch_ + 1, fwd = epoch_ + 2;
-  epoch_ += 2;
+  std::atomic<std::uint64_t>* done = flags_.rows(n);
+  const std::uint64_t bwd = flags_.epochs(2), fwd = bwd + 1;
   const auto& row_start = A.row_start();
   const auto& col = A.col();
   const auto& col_start = A.col_start();

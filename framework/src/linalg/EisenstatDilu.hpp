@@ -49,7 +49,6 @@ class EisenstatDilu {
  private:
   void backward_row(const BlockSparseMatrix& A, std::size_t i, const double* in, double* out) const;
   void operator_times_by_levels(const BlockSparseMatrix& A, const double* p, double* q, double* t) const;
-  std::atomic<std::uint64_t>* done_flags(std::size_t n) const;
 
   std::vector<Mat6> pivot_, inverse_, k_;  // P_i, P_i^-1, K_i = 2 P_i - D_i
   // Levels of the bound pattern: forward (row i reads rows k < i with a block (k, i)) and backward.
@@ -57,11 +56,8 @@ class EisenstatDilu {
   linalg::Levels forward_, backward_;
   std::vector<std::uint32_t> level_scratch_;
   std::vector<std::int64_t> fill_scratch_;
-  mutable std::vector<double> s_;  // the forward sweep's solution, read by later rows (threads > 1)
-  // done_[i]: epoch of the last sweep that finished row i (as in BlockIncompleteCholesky).
-  mutable std::unique_ptr<std::atomic<std::uint64_t>[]> done_;
-  mutable std::size_t done_size_ = 0;
-  mutable std::uint64_t epoch_ = 0;
+  mutable std::vector<double> s_;   // the forward sweep's solution, read by later rows (threads > 1)
+  mutable linalg::RowFlags flags_;  // as in BlockIncompleteCholesky
 };
 
 }  // namespace fldsim

@@ -1,11 +1,13 @@
-// Dependency levels of a block triangular sweep over a BlockSparseMatrix pattern, and the spin-wait
-// the level-scheduled sweeps use instead of barriers (BlockIncompleteCholesky, EisenstatDilu).
+// Dependency levels of a block triangular sweep over a BlockSparseMatrix pattern, and the per-row
+// flags and spin-wait the level-scheduled sweeps use instead of barriers (BlockIncompleteCholesky,
+// EisenstatDilu).
 // Core-private.
 #pragma once
 
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
+#include <memory>
 #include <thread>
 #include <vector>
 
@@ -48,5 +50,34 @@ inline void wait_until(const std::atomic<std::uint64_t>& flag, std::uint64_t epo
   for (int spins = 0; flag.load(std::memory_order_acquire) < epoch; ++spins)
     if (spins > 2000) std::this_thread::yield();
 }
+
+// Per-row completion flags of the level-scheduled passes: row i's flag holds the epoch of the last
+// pass that finished it, and every pass takes epochs larger than all before, so no reset is needed
+// between passes (a level then costs a barrier only where a dependency crosses threads).
+class RowFlags {
+ public:
+  // Flags of n rows: allocated, and the epochs restarted, only when n changes (they outlive
+  // pattern changes).
+  std::atomic<std::uint64_t>* rows(std::size_t n) {
+    if (size_ != n) {
+      flags_ = std::make_unique<std::atomic<std::uint64_t>[]>(n);
+      for (std::size_t i = 0; i < n; ++i) flags_[i].store(0, std::memory_order_relaxed);
+      size_ = n;
+      epoch_ = 0;
+    }
+    return flags_.get();
+  }
+  // The first of k new epochs (call after rows()).
+  std::uint64_t epochs(int k) {
+    const std::uint64_t first = epoch_ + 1;
+    epoch_ += std::uint64_t(k);
+    return first;
+  }
+
+ private:
+  std::unique_ptr<std::atomic<std::uint64_t>[]> flags_;
+  std::size_t size_ = 0;
+  std::uint64_t epoch_ = 0;
+};
 
 }  // namespace fldsim::linalg
