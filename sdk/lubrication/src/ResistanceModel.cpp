@@ -81,7 +81,8 @@ void describe_lubrication_params(ParamSchema& s) {
            "CG preconditioner: incomplete_cholesky (block IC(0) on the pair pattern), eisenstat_dilu "
            "(block D-ILU on the pair pattern applied with Eisenstat's trick: no product with R inside an "
            "iteration, so an iteration costs about 0.7 of IC(0)'s, but more iterations where R moves "
-           "fast: 8 % faster to 3 % slower per step by scene, bench/README.md \"Eisenstat\") or "
+           "fast: measured 3-9 % faster per step at Pe <= 10, 5-8 % slower at Pe 1000, one thread; "
+           "bench/README.md \"Eisenstat\") or "
            "block_jacobi (more iterations); the sweeps of the first two run parallel by dependency levels");
 }
 
