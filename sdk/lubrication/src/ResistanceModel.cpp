@@ -76,14 +76,16 @@ void describe_lubrication_params(ParamSchema& s) {
            "bit-exact")
       .at_least(0.0)
       .at_most(10.0);
-  s.choice("preconditioner", std::string("incomplete_cholesky"),
-           {"incomplete_cholesky", "eisenstat_dilu", "block_jacobi"},
-           "CG preconditioner: incomplete_cholesky (block IC(0) on the pair pattern), eisenstat_dilu "
-           "(block D-ILU on the pair pattern applied with Eisenstat's trick: no product with R inside an "
-           "iteration, so an iteration costs about 0.7 of IC(0)'s, but more iterations where R moves "
-           "fast: measured 3-9 % faster per step at Pe <= 10, 5-8 % slower at Pe 1000, one thread; "
-           "bench/README.md \"Eisenstat\") or "
-           "block_jacobi (more iterations); the sweeps of the first two run parallel by dependency levels");
+  s.choice(
+      "preconditioner", std::string("incomplete_cholesky"),
+      {"incomplete_cholesky", "eisenstat_dilu", "block_jacobi"},
+      "CG preconditioner: incomplete_cholesky (block IC(0) on the pair pattern), eisenstat_dilu "
+      "(block D-ILU on the pair pattern applied with Eisenstat's trick: no product with R inside an "
+      "iteration, so an iteration costs about 0.7 of IC(0)'s, but more iterations where R moves "
+      "fast: measured up to 9 % faster per step at Pe <= 10 (level on LAMMPS's documented sphere scene), "
+      "5-8 % slower at Pe 1000, one thread; "
+      "bench/README.md \"Eisenstat\") or "
+      "block_jacobi (more iterations); the sweeps of the first two run parallel by dependency levels");
 }
 
 bool lammps_conventions(const Params& p) {
