@@ -91,8 +91,6 @@ class FLDSIM_VISIBLE BlockPCG {
   Preconditioner active() const;
 
  private:
-  Result solve_transformed(const BlockSparseMatrix& A, double* x, double tolerance, int max_iterations,
-                           double bnorm, Result result);
   struct Workspace;
   std::unique_ptr<Workspace> w_;
 };

@@ -510,6 +510,7 @@ RunCheckReport check_run(const Experiment& ex, const PluginRegistry& registry, c
     const std::string where = "--resume " + targets.resume;
     try {
       const Checkpoint c = read_checkpoint(targets.resume);
+      report.resume_step = c.step;
       if (ex.count > 0 && c.positions.size() != std::size_t(ex.count))
         problems.at(where, "",
                     "the checkpoint holds " + std::to_string(c.positions.size()) +

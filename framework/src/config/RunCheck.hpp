@@ -40,6 +40,7 @@ struct RunCheckReport {
   std::int64_t steps = 0;        // frames: run.duration / run.dt (dt_max with dt: auto)
   std::int64_t nodes = 0;        // spheres of all bodies
   double volume_fraction = 0.0;  // true phi of the box
+  std::int64_t resume_step = 0;  // the step of the checkpoint to resume (RunTargets::resume), else 0
 };
 
 // Throws ConfigError listing every problem (exit code 2).

@@ -18,6 +18,9 @@ struct BlockPCG::Workspace {
   // Dot product as a sum of fixed-size chunks, added in chunk order: reproducible for any
   // thread count.
   double dot(const std::vector<double>& a, const std::vector<double>& b);
+  // CG on the Eisenstat-transformed system (EisenstatDilu), after solve() has formed r0.
+  BlockPCG::Result solve_transformed(const BlockSparseMatrix& A, double* x, double tolerance,
+                                     int max_iterations, double bnorm, BlockPCG::Result result);
 
   Preconditioner kind, active = Preconditioner::BlockJacobi;
   std::vector<Mat6> inv_diag;
@@ -124,7 +127,7 @@ BlockPCG::Result BlockPCG::solve(const BlockSparseMatrix& A, const double* b, do
     return result;
   }
   if (w.active == Preconditioner::EisenstatDilu)
-    return solve_transformed(A, x, tolerance, max_iterations, bnorm, result);
+    return w.solve_transformed(A, x, tolerance, max_iterations, bnorm, result);
   w.precondition(r_, z_);
   p_ = z_;
   double rz = w.dot(r_, z_);
@@ -157,9 +160,10 @@ BlockPCG::Result BlockPCG::solve(const BlockSparseMatrix& A, const double* b, do
 // r0 = b - A x0, bnorm = |b| and |r0| / |b| in result. The stopping rule is the other solves' |b - A x|
 // <= tol |b|: b - A x = L r^, estimated each iteration as c sqrt(r^.P r^) (c calibrated on r0) and,
 // when the estimate says converged, computed (L r^) and checked, c recalibrated if it was not.
-BlockPCG::Result BlockPCG::solve_transformed(const BlockSparseMatrix& A, double* x, double tolerance,
-                                             int max_iterations, double bnorm, Result result) {
-  Workspace& w = *w_;
+BlockPCG::Result BlockPCG::Workspace::solve_transformed(const BlockSparseMatrix& A, double* x,
+                                                        double tolerance, int max_iterations, double bnorm,
+                                                        BlockPCG::Result result) {
+  Workspace& w = *this;
   std::vector<double>&r = w.r, &z = w.z, &p = w.p, &q = w.q, &rh = w.r_hat, &xh = w.x_hat;
   const std::int64_t m = std::int64_t(6 * A.blocks());
   const double limit = tolerance * bnorm;

@@ -94,10 +94,18 @@ void EisenstatDilu::backward(const BlockSparseMatrix& A, const double* in, doubl
   }
   std::atomic<std::uint64_t>* done = flags_.rows(n);
   const std::uint64_t epoch = flags_.epochs(1);
+#pragma omp parallel
+  backward_by_levels(A, in, out, done, epoch);
+}
+
+// The backward sweep's rows by levels, each thread its static share of every level (an orphaned
+// `omp for`: call inside a parallel region); a row waits for the rows j > i it reads to carry
+// `epoch`, then publishes its own.
+void EisenstatDilu::backward_by_levels(const BlockSparseMatrix& A, const double* in, double* out,
+                                       std::atomic<std::uint64_t>* done, std::uint64_t epoch) const {
   const auto& row_start = A.row_start();
   const auto& col = A.col();
   const std::int64_t levels = std::int64_t(backward_.levels());
-#pragma omp parallel
   for (std::int64_t l = 0; l < levels; ++l) {
 #pragma omp for schedule(static) nowait
     for (std::int64_t r = backward_.level_start[l]; r < backward_.level_start[l + 1]; ++r) {
@@ -167,10 +175,6 @@ void EisenstatDilu::pivot_times(const double* in, double* out) const {
   for (std::size_t i = 0; i < pivot_.size(); ++i) block_times(pivot_[i], in + 6 * i).store(out + 6 * i);
 }
 
-}  // namespace fldsim
-
-namespace fldsim {
-
 // operator_times() on several threads: the backward sweep by levels, then the forward sweep by levels
 // in gather form (row i reads the finished s_k of its rows k < i), in one parallel region without
 // barriers (a row waits for its own t_i and for the rows it reads). Row i performs, in order, the
@@ -182,26 +186,14 @@ void EisenstatDilu::operator_times_by_levels(const BlockSparseMatrix& A, const d
   linalg::resize_grow_only(s_, 6 * n);
   std::atomic<std::uint64_t>* done = flags_.rows(n);
   const std::uint64_t bwd = flags_.epochs(2), fwd = bwd + 1;
-  const auto& row_start = A.row_start();
-  const auto& col = A.col();
   const auto& col_start = A.col_start();
   const auto& by_col = A.by_col();
   const auto& by_col_row = A.by_col_row();
   double* s = s_.data();
-  const std::int64_t backward_levels = std::int64_t(backward_.levels()),
-                     forward_levels = std::int64_t(forward_.levels());
+  const std::int64_t forward_levels = std::int64_t(forward_.levels());
 #pragma omp parallel
   {
-    for (std::int64_t l = 0; l < backward_levels; ++l) {
-#pragma omp for schedule(static) nowait
-      for (std::int64_t r = backward_.level_start[l]; r < backward_.level_start[l + 1]; ++r) {
-        const std::size_t i = backward_.row[std::size_t(r)];
-        for (std::int64_t a = row_start[i]; a < row_start[i + 1]; ++a)
-          linalg::wait_until(done[col[std::size_t(a)]], bwd);
-        backward_row(A, i, p, t);
-        done[i].store(bwd, std::memory_order_release);
-      }
-    }
+    backward_by_levels(A, p, t, done, bwd);
     for (std::int64_t l = 0; l < forward_levels; ++l) {
 #pragma omp for schedule(static) nowait
       for (std::int64_t r = forward_.level_start[l]; r < forward_.level_start[l + 1]; ++r) {

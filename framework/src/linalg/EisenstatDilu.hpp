@@ -48,6 +48,8 @@ class EisenstatDilu {
 
  private:
   void backward_row(const BlockSparseMatrix& A, std::size_t i, const double* in, double* out) const;
+  void backward_by_levels(const BlockSparseMatrix& A, const double* in, double* out,
+                          std::atomic<std::uint64_t>* done, std::uint64_t epoch) const;
   void operator_times_by_levels(const BlockSparseMatrix& A, const double* p, double* q, double* t) const;
 
   std::vector<Mat6> pivot_, inverse_, k_;  // P_i, P_i^-1, K_i = 2 P_i - D_i

@@ -14,7 +14,6 @@
 #include "config/ConfigErrors.hpp"
 #include "config/RunCheck.hpp"
 #include "fldsim/error.hpp"
-#include "io/Checkpoint.hpp"
 #include "plugins/PluginRegistry.hpp"
 #include "run/Experiment.hpp"
 #include "sweep/StoredRun.hpp"
@@ -102,14 +101,9 @@ std::string format_duration(double s) {
   return buffer;
 }
 
-double share_left(const std::string& checkpoint, std::int64_t frames, bool adaptive) {
+double share_left(std::int64_t frames, std::int64_t done, bool adaptive) {
   if (adaptive || frames <= 0) return 1.0;
-  try {
-    const std::int64_t done = read_checkpoint(checkpoint).step;
-    return std::clamp(double(frames - done) / double(frames), 0.0, 1.0);
-  } catch (const Error&) {
-    return 1.0;
-  }
+  return std::clamp(double(frames - done) / double(frames), 0.0, 1.0);
 }
 
 std::vector<PointState> check_sweep_points(const SweepPlan& plan) {
@@ -173,7 +167,7 @@ std::vector<PointState> check_sweep_points(const SweepPlan& plan) {
       st.cost_seconds = estimated_cpu_seconds(st.hydro, st.steps, st.nodes, ex.brownian);
       st.whole_cost_seconds = st.cost_seconds;
       if (st.status == PointStatus::Resume)
-        st.cost_seconds *= share_left(st.checkpoint, st.steps, ex.dt_auto);
+        st.cost_seconds *= share_left(st.steps, report.resume_step, ex.dt_auto);
       st.adaptive = ex.dt_auto;
       st.frame = ex.dt;
       for (const auto& o : ex.observers) st.observer_every.push_back(o.every);

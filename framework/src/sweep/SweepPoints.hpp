@@ -45,10 +45,10 @@ std::vector<PointState> check_sweep_points(const SweepPlan& plan);
 // `threads` threads (docs/sweep.md gives its calibration).
 double estimated_cpu_seconds(const std::string& hydro, std::int64_t steps, std::int64_t nodes, bool brownian);
 
-// The share of a resumed point's frames still to run, for its estimate: 1 - the checkpoint's step
-// / frames (fixed dt: one step per frame). 1 for dt: auto (steps are not frames) or a checkpoint
-// that cannot be read (check_run reports it).
-double share_left(const std::string& checkpoint, std::int64_t frames, bool adaptive);
+// The share of a resumed point's frames still to run, for its estimate: 1 - done / frames, done
+// the checkpoint's step (fixed dt: one step per frame; check_run reads it). 1 for dt: auto (steps
+// are not frames).
+double share_left(std::int64_t frames, std::int64_t done, bool adaptive);
 
 // "12 s", "3.4 min", "2.1 h".
 std::string format_duration(double seconds);
