@@ -2,10 +2,13 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <numeric>
+#include <random>
 #include <sstream>
 
 #include "config/YamlValidation.hpp"
@@ -131,6 +134,39 @@ BenchScene::BenchScene(const SceneSpec& spec, const std::vector<ObserverSpec>& o
   SimulationParts parts;
   parts.system = std::make_unique<System>(shape, spec.count, edge, ph);
   start_configuration(spec, *parts.system);
+  if (!spec.order.empty()) {
+    System& sys = *parts.system;
+    std::vector<std::size_t> order(sys.size());
+    std::iota(order.begin(), order.end(), std::size_t(0));
+    if (spec.order == "shuffle") {
+      std::shuffle(order.begin(), order.end(), std::mt19937_64(spec.seed));
+    } else {
+      const double L = sys.box().edge();
+      const int cells = std::max(1, int(L / (2.0 * sys.shape().bounding_radius())));
+      auto morton = [&](const Vec3& x) {
+        std::uint64_t key = 0;
+        for (int d = 0; d < 3; ++d) {
+          double u = x[d] / L;
+          u -= std::floor(u);
+          const std::uint64_t c = std::min<std::uint64_t>(std::uint64_t(u * cells), std::uint64_t(cells - 1));
+          for (int b = 0; b < 21; ++b) key |= ((c >> b) & 1u) << (3 * b + d);
+        }
+        return key;
+      };
+      std::vector<std::uint64_t> key(sys.size());
+      for (std::size_t i = 0; i < sys.size(); ++i) key[i] = morton(sys.positions()[i]);
+      std::stable_sort(order.begin(), order.end(),
+                       [&](std::size_t a, std::size_t b) { return key[a] < key[b]; });
+    }
+    const std::vector<Vec3> x = sys.positions();
+    const auto q = sys.orientations();
+    for (std::size_t i = 0; i < order.size(); ++i) {
+      sys.positions()[i] = x[order[i]];
+      sys.orientations()[i] = q[order[i]];
+    }
+    sys.update_nodes();
+    start_note_ += ", bodies ordered: " + spec.order;
+  }
 
   hydro_ =
       registry().create<HydroModel>("hydro", spec.hydro, plugin_params("hydro", spec.hydro, spec.hydro_yaml));

@@ -41,6 +41,10 @@ struct SceneSpec {
   bool lattice = true;    // spheres: lattice start when possible, else always MC compression
   std::string cache_dir;  // where configurations are cached ("" = no cache)
   std::uint64_t seed = 42;
+  // Order of the bodies' indices (positions and orientations permuted): "" as built, "shuffle"
+  // random (the layout a long run drifts to as bodies mix), "cells" along a Z-order curve of cells of
+  // about 2 radii (neighbours close in memory).
+  std::string order;
 };
 
 // One observer plugin with its schedule, as in an experiment's `observers:` list.

@@ -9,7 +9,8 @@
 // (sphere|dicolloid), c, n, phi, pe, kT (1|0), hydro, skin, dt (internal, 0 = 1e-3 in the paper's unit),
 // threads, steps, warmup, sweeps (MC sweeps of the quick start), observers
 // (none|standard|stress1|all1|all100), start (lattice: spheres on a simple cubic lattice when N is a cube,
-// else MC compression | mc: always MC compression), cache (configuration cache directory). Columns: wall and
+// else MC compression | mc: always MC compression), order (bodies renumbered: shuffle | cells), cache
+// (configuration cache directory). Columns: wall and
 // process-CPU ms/step of the timed steps, CG iterations per step (all solves of the step), the time of each
 // part of the step in ms/step (neighbours+forces+moves are the rest), lubricated pairs, neighbour rebuilds
 // and the process's peak resident memory (VmHWM) in MB.
@@ -80,7 +81,7 @@ int main(int argc, char** argv) {
                                         {"skin", "0.3"},   {"dt", "0"},          {"threads", "1"},
                                         {"steps", "20"},   {"repeats", "1"},     {"warmup", "2"},
                                         {"sweeps", "50"},  {"start", "lattice"}, {"observers", "standard"},
-                                        {"cache", ""}};
+                                        {"cache", ""},     {"order", ""}};
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--header") {
@@ -112,6 +113,7 @@ int main(int argc, char** argv) {
     if (kv["start"] != "lattice" && kv["start"] != "mc")
       throw Error("start=" + kv["start"] + ": expected lattice or mc");
     spec.lattice = kv["start"] == "lattice";
+    spec.order = kv["order"];
     const int threads = std::stoi(kv["threads"]);
 #ifdef _OPENMP
     omp_set_num_threads(threads);

@@ -16,7 +16,7 @@
 // Minor: additions a plugin built against an older minor can ignore (fldsim::PairEnergy, the
 // optional pair energy of a force law, came in 2.1 as a class of its own).
 #define FLDSIM_API_MAJOR 5
-#define FLDSIM_API_MINOR 1
+#define FLDSIM_API_MINOR 2
 
 #define FLDSIM_STR2(x) #x
 #define FLDSIM_STR(x) FLDSIM_STR2(x)

@@ -89,6 +89,11 @@ class FLDSIM_VISIBLE BlockPCG {
   Result solve(const BlockSparseMatrix& A, const double* b, double* x, double tolerance, int max_iterations);
   // The preconditioner in use after prepare() (IC(0) falls back to block Jacobi on breakdown).
   Preconditioner active() const;
+  // What a checkpoint must carry besides the matrix the preconditioner was built from, so that
+  // prepare() on that matrix after a restart builds the same preconditioner (IC(0): its row order
+  // and that order's age; empty otherwise). Restore before prepare(); false if malformed (API 5.2).
+  std::vector<double> preconditioner_state() const;
+  bool restore_preconditioner_state(const std::vector<double>& state, std::size_t blocks);
 
  private:
   struct Workspace;

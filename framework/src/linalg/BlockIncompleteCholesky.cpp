@@ -5,24 +5,68 @@
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <memory>
 
 #include "linalg/Block6Kernels.hpp"
+#include "linalg/CuthillMcKee.hpp"
 #include "linalg/GrowOnly.hpp"
 #include "linalg/LevelSchedule.hpp"
 
 namespace fldsim {
 
-void BlockIncompleteCholesky::analyse(const BlockSparseMatrix& A) {
+void BlockIncompleteCholesky::analyse(const BlockSparseMatrix& A, bool reorder) {
   const std::size_t n = A.blocks();
-  using linalg::copy_grow_only;
-  copy_grow_only(row_start_, A.row_start());
-  copy_grow_only(col_, A.col());
-  copy_grow_only(col_start_, A.col_start());
-  copy_grow_only(by_col_, A.by_col());
-  copy_grow_only(by_col_row_, A.by_col_row());
-  linalg::resize_grow_only(upper_, col_.size());
+  // The factor works in reverse Cuthill-McKee order (CuthillMcKee.hpp): row p of the factor is row
+  // old_of_[p] of A, and A's upper block a = (i, j) lands at (min, max) of (new_of_[i], new_of_[j]),
+  // transposed when new_of_[i] > new_of_[j] (source_ = 2 a + 1 then, else 2 a).
+  if (reorder) {
+    linalg::reverse_cuthill_mckee(n, A.row_start(), A.col(), A.col_start(), A.by_col_row(), new_of_, old_of_,
+                                  order_scratch_);
+    order_age_ = 0;
+  }
+  const auto& a_start = A.row_start();
+  const auto& a_col = A.col();
+  const std::size_t nnz = a_col.size();
+  linalg::fill_grow_only(row_start_, n + 1, std::int64_t(0));
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::int64_t a = a_start[i]; a < a_start[i + 1]; ++a)
+      ++row_start_[std::min(new_of_[i], new_of_[a_col[std::size_t(a)]]) + 1];
+  for (std::size_t p = 0; p < n; ++p) row_start_[p + 1] += row_start_[p];
+  linalg::copy_grow_only(fill_scratch_, row_start_.begin(), row_start_.end() - 1);
+  linalg::resize_grow_only(col_, nnz);
+  linalg::resize_grow_only(source_, nnz);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::int64_t a = a_start[i]; a < a_start[i + 1]; ++a) {
+      const std::uint32_t p = new_of_[i], q = new_of_[a_col[std::size_t(a)]];
+      const std::int64_t k = fill_scratch_[std::min(p, q)]++;
+      col_[std::size_t(k)] = std::max(p, q);
+      source_[std::size_t(k)] = 2 * a + (p > q ? 1 : 0);
+    }
+  // Columns ascending within each row (rows hold a few blocks: insertion sort).
+  for (std::size_t p = 0; p < n; ++p)
+    for (std::int64_t a = row_start_[p] + 1; a < row_start_[p + 1]; ++a)
+      for (std::int64_t b = a; b > row_start_[p] && col_[std::size_t(b - 1)] > col_[std::size_t(b)]; --b) {
+        std::swap(col_[std::size_t(b - 1)], col_[std::size_t(b)]);
+        std::swap(source_[std::size_t(b - 1)], source_[std::size_t(b)]);
+      }
+  // The transposed index: column q's blocks by ascending row.
+  linalg::fill_grow_only(col_start_, n + 1, std::int64_t(0));
+  for (std::size_t a = 0; a < nnz; ++a) ++col_start_[col_[a] + 1];
+  for (std::size_t q = 0; q < n; ++q) col_start_[q + 1] += col_start_[q];
+  linalg::copy_grow_only(fill_scratch_, col_start_.begin(), col_start_.end() - 1);
+  linalg::resize_grow_only(by_col_, nnz);
+  linalg::resize_grow_only(by_col_row_, nnz);
+  for (std::size_t p = 0; p < n; ++p)
+    for (std::int64_t a = row_start_[p]; a < row_start_[p + 1]; ++a) {
+      const std::int64_t k = fill_scratch_[col_[std::size_t(a)]]++;
+      by_col_[std::size_t(k)] = a;
+      by_col_row_[std::size_t(k)] = std::uint32_t(p);
+    }
+  linalg::resize_grow_only(upper_, nnz);
   inv_lower_.resize(n);
+  linalg::resize_grow_only(permuted_r_, 6 * n);
+  linalg::resize_grow_only(permuted_z_, 6 * n);
   // Forward (and factorisation): row i needs the rows k < i with a block (k, i).
   linalg::schedule(
       n, false,
@@ -40,13 +84,20 @@ void BlockIncompleteCholesky::analyse(const BlockSparseMatrix& A) {
   pattern_id_ = A.pattern_id();
 }
 
-// Row i of U from the finished rows k < i (left-looking IC(0) restricted to A's pattern):
+// Row i of U (in the factor's order) from the finished rows k < i (left-looking IC(0) restricted to
+// A's pattern):
 // D_i = A_ii - sum_k U_ki^T U_ki,  W_ij = A_ij - sum_k U_ki^T U_kj  (k ascending, (i, j) stored),
 // then D_i = L L^T, U_ii = L^T and U_ij = L^-1 W_ij.
 bool BlockIncompleteCholesky::factor_row(const BlockSparseMatrix& A, std::size_t i) {
-  Mat6 D = A.diagonal(i);
+  Mat6 D = A.diagonal(old_of_[i]);
   const std::int64_t first = row_start_[i], last = row_start_[i + 1];
-  for (std::int64_t a = first; a < last; ++a) upper_[a] = A.upper(a);
+  for (std::int64_t a = first; a < last; ++a) {
+    const Mat6& Aij = A.upper(source_[a] >> 1);
+    if (source_[a] & 1)
+      upper_[a] = Aij.transpose();
+    else
+      upper_[a] = Aij;
+  }
   for (std::int64_t c = col_start_[i]; c < col_start_[i + 1]; ++c) {
     const std::int64_t ki = by_col_[c];
     const std::int64_t k_end = row_start_[by_col_row_[c] + 1];
@@ -70,8 +121,38 @@ bool BlockIncompleteCholesky::factor_row(const BlockSparseMatrix& A, std::size_t
   return true;
 }
 
+std::vector<double> BlockIncompleteCholesky::order_state() const {
+  if (old_of_.empty()) return {};
+  std::vector<double> out;
+  out.reserve(old_of_.size() + 1);
+  out.push_back(double(order_age_));
+  for (const std::uint32_t i : old_of_) out.push_back(double(i));
+  return out;
+}
+
+bool BlockIncompleteCholesky::restore_order_state(const std::vector<double>& state, std::size_t n) {
+  if (state.size() != n + 1 || !(state[0] >= 1.0 && state[0] <= double(kReorderEvery)) ||
+      state[0] != std::floor(state[0]))
+    return false;
+  std::vector<std::uint32_t> old_of(n), new_of(n, std::uint32_t(n));
+  for (std::size_t p = 0; p < n; ++p) {
+    const double i = state[p + 1];
+    if (!(i >= 0.0 && i < double(n)) || i != std::floor(i) || new_of[std::size_t(i)] != n) return false;
+    old_of[p] = std::uint32_t(i);
+    new_of[std::size_t(i)] = std::uint32_t(p);
+  }
+  old_of_ = std::move(old_of);
+  new_of_ = std::move(new_of);
+  // The next factorisation is the restored factor's own: it keeps this order and counts again.
+  order_age_ = int(state[0]) - 1;
+  pattern_id_ = 0;
+  return true;
+}
+
 bool BlockIncompleteCholesky::factorize(const BlockSparseMatrix& A) {
-  if (pattern_id_ != A.pattern_id() || inv_lower_.size() != A.blocks()) analyse(A);
+  const bool reorder = old_of_.size() != A.blocks() || order_age_ >= kReorderEvery;
+  if (reorder || pattern_id_ != A.pattern_id() || inv_lower_.size() != A.blocks()) analyse(A, reorder);
+  ++order_age_;
   const std::int64_t n = std::int64_t(A.blocks());
   bool ok = true;
   if (omp_get_max_threads() == 1) {
@@ -149,20 +230,25 @@ void BlockIncompleteCholesky::backward_row(std::size_t i, double* z) const {
   linalg::transposed_product(pivot_f_[i].data(), acc).store(z + 6 * i);
 }
 
+// z = P^T (U^T U)^-1 P r, with P the factor's row order: r is gathered into that order, the two
+// sweeps run there, and the result is scattered back (pure copies: the same for any thread count).
 void BlockIncompleteCholesky::apply(const double* r, double* z) const {
   const std::int64_t n = std::int64_t(pivot_f_.size());
+  double* rp = permuted_r_.data();
+  double* zp = permuted_z_.data();
   if (omp_get_max_threads() == 1 || !gathered_) {
     // Forward by scattering each solved block into the rows below: streams U in its own
     // layout. z_i receives r_i - U_ki^T y_k for k ascending, the operations of forward_row.
-    std::copy(r, r + 6 * n, z);
+    for (std::int64_t p = 0; p < n; ++p) std::copy_n(r + 6 * std::size_t(old_of_[p]), 6, zp + 6 * p);
     for (std::int64_t i = 0; i < n; ++i) {
-      pivot_times(std::size_t(i), linalg::Acc6::load(z + 6 * i), z + 6 * i);
-      const linalg::Acc6 y = linalg::Acc6::load(z + 6 * i);
+      pivot_times(std::size_t(i), linalg::Acc6::load(zp + 6 * i), zp + 6 * i);
+      const linalg::Acc6 y = linalg::Acc6::load(zp + 6 * i);
       for (std::int64_t a = row_start_[i]; a < row_start_[i + 1]; ++a)
-        linalg::add_to_memory<-1>(z + 6 * std::size_t(col_[a]),
+        linalg::add_to_memory<-1>(zp + 6 * std::size_t(col_[a]),
                                   linalg::transposed_product(upper_f_[a].data(), y));
     }
-    for (std::int64_t i = n; i-- > 0;) backward_row(std::size_t(i), z);
+    for (std::int64_t i = n; i-- > 0;) backward_row(std::size_t(i), zp);
+    for (std::int64_t p = 0; p < n; ++p) std::copy_n(zp + 6 * p, 6, z + 6 * std::size_t(old_of_[p]));
     return;
   }
   // Levels, without barriers between them: each thread takes its static share of every level in
@@ -175,13 +261,15 @@ void BlockIncompleteCholesky::apply(const double* r, double* z) const {
   const std::int64_t forward = std::int64_t(forward_.levels()), backward = std::int64_t(backward_.levels());
 #pragma omp parallel
   {
+#pragma omp for schedule(static)
+    for (std::int64_t p = 0; p < n; ++p) std::copy_n(r + 6 * std::size_t(old_of_[p]), 6, rp + 6 * p);
     for (std::int64_t l = 0; l < forward; ++l) {
 #pragma omp for schedule(static) nowait
       for (std::int64_t s = forward_.level_start[l]; s < forward_.level_start[l + 1]; ++s) {
         const std::size_t i = forward_.row[s];
         for (std::int64_t c = col_start_[i]; c < col_start_[i + 1]; ++c)
           linalg::wait_until(done[by_col_row_[c]], fwd);
-        forward_row(i, r, z);
+        forward_row(i, rp, zp);
         done[i].store(fwd, std::memory_order_release);
       }
     }
@@ -192,10 +280,13 @@ void BlockIncompleteCholesky::apply(const double* r, double* z) const {
         linalg::wait_until(done[i], fwd);  // its own forward result
         for (std::int64_t a = row_start_[i]; a < row_start_[i + 1]; ++a)
           linalg::wait_until(done[col_[a]], bwd);
-        backward_row(i, z);
+        backward_row(i, zp);
         done[i].store(bwd, std::memory_order_release);
       }
     }
+#pragma omp barrier
+#pragma omp for schedule(static)
+    for (std::int64_t p = 0; p < n; ++p) std::copy_n(zp + 6 * p, 6, z + 6 * std::size_t(old_of_[p]));
   }
 }
 

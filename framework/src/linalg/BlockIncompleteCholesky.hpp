@@ -9,6 +9,7 @@
 
 #include "fldsim/block_sparse.hpp"
 #include "linalg/Block6Kernels.hpp"
+#include "linalg/CuthillMcKee.hpp"
 #include "linalg/LevelSchedule.hpp"
 
 namespace fldsim {
@@ -21,29 +22,48 @@ namespace fldsim {
 // levels computed once per pattern: rows of one level are independent and run in parallel, a
 // thread waiting (per-row flags, no barrier between levels) only for the rows it reads, and
 // every row is summed in the same fixed order whatever the thread count, so the result does not
-// depend on it. If a pivot block is not positive definite (IC(0) of a general SPD matrix can break
-// down) factorize() returns false and the caller falls back to block Jacobi.
+// depend on it. The factor's rows are in reverse Cuthill-McKee order of A's graph, not the bodies'
+// numbering (CuthillMcKee.hpp: a random numbering more than doubled the iterations at N = 27000). If a pivot
+// block is not positive definite (IC(0) of a general SPD matrix can break down) factorize() returns false and
+// the caller falls back to block Jacobi.
 class FLDSIM_VISIBLE BlockIncompleteCholesky {
  public:
   bool factorize(const BlockSparseMatrix& A);
   // z = (U^T U)^-1 r.
   void apply(const double* r, double* z) const;
+  // The row order of the current factor and its age, for checkpoints: [age, old_of...] (empty
+  // before the first factorisation). A run restored with it factorises as the uninterrupted run.
+  std::vector<double> order_state() const;
+  // Restores order_state() output for n rows before the next factorize(); false if malformed.
+  bool restore_order_state(const std::vector<double>& state, std::size_t n);
   // Dependency levels of the forward and backward sweeps (each level is one parallel step).
   std::size_t forward_levels() const { return forward_.levels(); }
   std::size_t backward_levels() const { return backward_.levels(); }
 
  private:
   using Levels = linalg::Levels;
-  void analyse(const BlockSparseMatrix& A);
+  void analyse(const BlockSparseMatrix& A, bool reorder);
   bool factor_row(const BlockSparseMatrix& A, std::size_t i);
   void forward_row(std::size_t i, const double* r, double* z) const;
   void backward_row(std::size_t i, double* z) const;
   void pivot_times(std::size_t i, const linalg::Acc6& acc, double* out) const;
 
   std::uint64_t pattern_id_ = 0;
-  // A's upper pattern by rows and its transposed index (see BlockSparseMatrix).
-  std::vector<std::int64_t> row_start_, col_start_, by_col_;
+  // The factor's row order (reverse Cuthill-McKee of A's graph, CuthillMcKee.hpp): factor row p is
+  // A's row old_of_[p], A's row i is factor row new_of_[i].
+  // The order is computed anew every kReorderEvery factorisations (bodies drift apart slowly;
+  // computing it at every new pattern cost as much as it saved on 1000 fused dumbbells), so its
+  // age is part of the state a checkpoint carries (order_state()).
+  std::vector<std::uint32_t> new_of_, old_of_;
+  static constexpr int kReorderEvery = 100;
+  int order_age_ = 0;  // factorisations with the current order, the last one included
+  linalg::CuthillMcKeeScratch order_scratch_;
+  // A's upper pattern in that order, by rows and its transposed index (as in BlockSparseMatrix);
+  // source_[a] = 2 b + t: the factor's block a is A's upper block b, transposed if t = 1.
+  std::vector<std::int64_t> row_start_, col_start_, by_col_, source_;
   std::vector<std::uint32_t> col_, by_col_row_;
+  // apply()'s r and z in the factor's order.
+  mutable std::vector<double> permuted_r_, permuted_z_;
   Levels forward_, backward_;
   // The factorisation runs in double: inv_lower_ = (U_ii^T)^-1 (lower triangular) and upper_ =
   // U_ij (i < j, laid out as A's upper blocks).

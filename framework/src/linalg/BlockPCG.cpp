@@ -38,6 +38,15 @@ Preconditioner BlockPCG::active() const {
   return w_->active;
 }
 
+std::vector<double> BlockPCG::preconditioner_state() const {
+  return w_->kind == Preconditioner::IncompleteCholesky ? w_->ic.order_state() : std::vector<double>{};
+}
+
+bool BlockPCG::restore_preconditioner_state(const std::vector<double>& state, std::size_t blocks) {
+  if (state.empty()) return true;
+  return w_->kind == Preconditioner::IncompleteCholesky && w_->ic.restore_order_state(state, blocks);
+}
+
 void BlockPCG::prepare(const BlockSparseMatrix& A) {
   Workspace& w = *w_;
   const std::size_t n = A.blocks();

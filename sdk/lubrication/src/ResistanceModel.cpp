@@ -270,13 +270,17 @@ bool ResistanceModel::reuse_factor() const {
   return change <= t2 * size;
 }
 
-// The factor's source matrix: [n, pairs, (i, j) of each upper block, the n diagonal blocks, the
-// upper blocks], blocks column-major. Empty while there is no factor.
+// [-2 (the format), n, pairs, (i, j) of each upper block, the n diagonal blocks, the upper blocks,
+// k, the preconditioner's own state]: the factor's source matrix, blocks column-major, and the k
+// numbers of BlockPCG::preconditioner_state (IC(0)'s row order). Empty while there is no factor.
+// Format 1 (API 5.1) had no marker and no own state: [n, pairs, ..., the upper blocks].
 std::vector<double> ResistanceModel::save_state() const {
   if (!has_factor_) return {};
   const std::size_t n = factor_source_.blocks(), m = factor_source_.col().size();
   std::vector<double> out;
-  out.reserve(2 + 2 * m + 36 * (n + m));
+  const std::vector<double> own = pcg_.preconditioner_state();
+  out.reserve(4 + 2 * m + 36 * (n + m) + own.size());
+  out.push_back(-2.0);
   out.push_back(double(n));
   out.push_back(double(m));
   for (std::size_t i = 0; i < n; ++i)
@@ -289,6 +293,8 @@ std::vector<double> ResistanceModel::save_state() const {
   for (std::size_t a = 0; a < m; ++a)
     out.insert(out.end(), factor_source_.upper(std::int64_t(a)).data(),
                factor_source_.upper(std::int64_t(a)).data() + 36);
+  out.push_back(double(own.size()));
+  out.insert(out.end(), own.begin(), own.end());
   return out;
 }
 
@@ -296,23 +302,36 @@ void ResistanceModel::restore_state(const std::vector<double>& state) {
   if (!configured_) throw Error("hydro: restore_state() called before configure()");
   if (state.empty()) return;
   const std::size_t n = A_.blocks();
+  // Format 2 starts with -2; format 1 (API 5.1, no marker) resumes correctly but not bit for bit
+  // (IC(0)'s row order is computed afresh).
+  const bool marked = state[0] == -2.0;
+  const std::vector<double> body(state.begin() + (marked ? 1 : 0), state.end());
   auto fail = [](const std::string& what) {
     throw Error("hydro state (the preconditioner's matrix) " + what +
                 "; was the system changed since the checkpoint?");
   };
-  if (state.size() < 2 || state[0] != double(n)) fail("is for another number of bodies");
-  const double pairs = state[1];
+  if (body.size() < 2 || body[0] != double(n)) fail("is for another number of bodies");
+  const double pairs = body[1];
   if (!(pairs >= 0.0) || pairs > double(n) * double(n) || pairs != std::floor(pairs)) fail("is malformed");
   const std::size_t m = std::size_t(pairs);
-  if (state.size() != 2 + 2 * m + 36 * (n + m)) fail("has the wrong size");
+  const std::size_t matrix = 2 + 2 * m + 36 * (n + m);
+  std::vector<double> own;
+  if (!marked) {
+    if (body.size() != matrix) fail("has the wrong size");
+  } else {
+    const double k = body.size() > matrix ? body[matrix] : -1.0;
+    if (!(k >= 0.0) || k != std::floor(k) || body.size() != matrix + 1 + std::size_t(k))
+      fail("has the wrong size");
+    own.assign(body.begin() + std::ptrdiff_t(matrix + 1), body.end());
+  }
   std::vector<std::pair<std::uint32_t, std::uint32_t>> upper(m);
   for (std::size_t a = 0; a < m; ++a) {
-    const double i = state[2 + 2 * a], j = state[3 + 2 * a];
+    const double i = body[2 + 2 * a], j = body[3 + 2 * a];
     if (!(i >= 0.0 && i < j && j < double(n)) || i != std::floor(i) || j != std::floor(j))
       fail("is malformed");
     upper[a] = {std::uint32_t(i), std::uint32_t(j)};
   }
-  const double* values = state.data() + 2 + 2 * m;
+  const double* values = body.data() + 2 + 2 * m;
   if (!std::all_of(values, values + 36 * (n + m), [](double v) { return std::isfinite(v); }))
     fail("holds a non-finite value");
   factor_source_.set_pattern(n, upper);
@@ -323,6 +342,7 @@ void ResistanceModel::restore_state(const std::vector<double>& state) {
     if (k < 0) fail("is malformed");
     factor_source_.upper(k) = Eigen::Map<const Mat6>(values + 36 * a);
   }
+  if (!pcg_.restore_preconditioner_state(own, n)) fail("is malformed (the preconditioner's row order)");
   pcg_.prepare(factor_source_);
   has_factor_ = true;
 }
