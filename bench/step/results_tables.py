@@ -106,7 +106,7 @@ def step_tables(rows):
             "rebuild": ("skin 0 vs skin 0.3", "neighbour rebuilds only when needed"),
             "precond": ("block Jacobi vs IC(0) (fld default)", "CG iterations saved by the IC(0) preconditioner"),
             "dilu": ("IC(0) vs D-ILU with Eisenstat's trick (an option)", "what the option saves (no product with R in an iteration)"),
-            "order": ("bodies numbered at random vs along a Z-order curve", "nothing: IC(0) factorises in its own (reverse Cuthill-McKee) row order, so the ratio should be 1"),
+            "order": ("bodies numbered at random vs along a Z-order curve", "nothing: IC(0) factorises in its own (reverse Cuthill-McKee) row order, so the ratio should be near 1 (the numbering still breaks the order's ties)"),
         }
         out += ["## What skipping saves (spheres, N = 1000, phi = 0.3, one thread, dt = 1e-4 a^2/D0)", "",
                 "Each pair ran on, off, off, on; ratio = fastest CPU ms/step with the work / fastest CPU ms/step "

@@ -79,11 +79,12 @@ void describe_lubrication_params(ParamSchema& s) {
   s.choice(
       "preconditioner", std::string("incomplete_cholesky"),
       {"incomplete_cholesky", "eisenstat_dilu", "block_jacobi"},
-      "CG preconditioner: incomplete_cholesky (block IC(0) on the pair pattern), eisenstat_dilu "
+      "CG preconditioner: incomplete_cholesky (block IC(0) on the pair pattern, factorised in reverse "
+      "Cuthill-McKee order of the pair graph whatever the bodies' numbering), eisenstat_dilu "
       "(block D-ILU on the pair pattern applied with Eisenstat's trick: no product with R inside an "
       "iteration, so an iteration costs about 0.7 of IC(0)'s, but more iterations where R moves "
       "fast: measured up to 9 % faster per step at Pe <= 10 (level on LAMMPS's documented sphere scene), "
-      "5-8 % slower at Pe 1000, one thread; "
+      "5-8 % slower at Pe 1000, one thread, against IC(0) before its reordering, which took 1-3 % off IC(0); "
       "bench/README.md \"Eisenstat\") or "
       "block_jacobi (more iterations); the sweeps of the first two run parallel by dependency levels");
 }
