@@ -83,8 +83,8 @@ void describe_lubrication_params(ParamSchema& s) {
       "Cuthill-McKee order of the pair graph whatever the bodies' numbering), eisenstat_dilu "
       "(block D-ILU on the pair pattern applied with Eisenstat's trick: no product with R inside an "
       "iteration, so an iteration costs about 0.7 of IC(0)'s, but more iterations where R moves "
-      "fast: measured up to 9 % faster per step at Pe <= 10 (level on LAMMPS's documented sphere scene), "
-      "5-8 % slower at Pe 1000, one thread, against IC(0) before its reordering, which took 1-3 % off IC(0); "
+      "fast: measured 7-9 % faster per step on dicolloids at Pe <= 10, 3-4 % slower at Pe 1000 and on "
+      "LAMMPS's documented sphere scene, one thread; "
       "bench/README.md \"Eisenstat\") or "
       "block_jacobi (more iterations); the sweeps of the first two run parallel by dependency levels");
 }
