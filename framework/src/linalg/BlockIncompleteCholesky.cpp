@@ -131,8 +131,9 @@ std::vector<double> BlockIncompleteCholesky::order_state() const {
 }
 
 bool BlockIncompleteCholesky::restore_order_state(const std::vector<double>& state, std::size_t n) {
-  if (state.size() != n + 1 || !(state[0] >= 1.0 && state[0] <= double(kReorderEvery)) ||
-      state[0] != std::floor(state[0]))
+  // Any age >= 1 is accepted: a build with another kReorderEvery resumes (the order is then renewed
+  // at the first factorisation whose age reaches its own period).
+  if (state.size() != n + 1 || !(state[0] >= 1.0 && state[0] < 1e9) || state[0] != std::floor(state[0]))
     return false;
   std::vector<std::uint32_t> old_of(n), new_of(n, std::uint32_t(n));
   for (std::size_t p = 0; p < n; ++p) {
