@@ -12,6 +12,7 @@
 #include "linalg/CuthillMcKee.hpp"
 #include "linalg/GrowOnly.hpp"
 #include "linalg/LevelSchedule.hpp"
+#include "linalg/TransposedIndex.hpp"
 
 namespace fldsim {
 
@@ -50,19 +51,7 @@ void BlockIncompleteCholesky::analyse(const BlockSparseMatrix& A, bool reorder) 
         std::swap(col_[std::size_t(b - 1)], col_[std::size_t(b)]);
         std::swap(source_[std::size_t(b - 1)], source_[std::size_t(b)]);
       }
-  // The transposed index: column q's blocks by ascending row.
-  linalg::fill_grow_only(col_start_, n + 1, std::int64_t(0));
-  for (std::size_t a = 0; a < nnz; ++a) ++col_start_[col_[a] + 1];
-  for (std::size_t q = 0; q < n; ++q) col_start_[q + 1] += col_start_[q];
-  linalg::copy_grow_only(fill_scratch_, col_start_.begin(), col_start_.end() - 1);
-  linalg::resize_grow_only(by_col_, nnz);
-  linalg::resize_grow_only(by_col_row_, nnz);
-  for (std::size_t p = 0; p < n; ++p)
-    for (std::int64_t a = row_start_[p]; a < row_start_[p + 1]; ++a) {
-      const std::int64_t k = fill_scratch_[col_[std::size_t(a)]]++;
-      by_col_[std::size_t(k)] = a;
-      by_col_row_[std::size_t(k)] = std::uint32_t(p);
-    }
+  linalg::transposed_index(n, row_start_, col_, col_start_, by_col_, by_col_row_, fill_scratch_);
   linalg::resize_grow_only(upper_, nnz);
   inv_lower_.resize(n);
   linalg::resize_grow_only(permuted_r_, 6 * n);

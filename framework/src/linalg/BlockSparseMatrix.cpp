@@ -6,6 +6,7 @@
 #include "fldsim/block_sparse.hpp"
 #include "linalg/Block6Kernels.hpp"
 #include "linalg/GrowOnly.hpp"
+#include "linalg/TransposedIndex.hpp"
 
 namespace fldsim {
 
@@ -29,20 +30,9 @@ void BlockSparseMatrix::set_pattern(std::size_t n,
   for (std::size_t k = 0; k < nnz; ++k) col_[k] = sorted_[k].second;
   linalg::fill_grow_only(values_, nnz, Mat6(Mat6::Zero()));
 
-  // Transposed index: for column j, the stored blocks (i, j) in increasing i (the sorted order
-  // guarantees it), so the lower part of a row is summed in a fixed order.
-  col_start_.assign(n + 1, 0);
-  for (const auto& [i, j] : sorted_) ++col_start_[j + 1];
-  for (std::size_t j = 0; j < n; ++j) col_start_[j + 1] += col_start_[j];
-  resize_grow_only(by_col_, nnz);
-  resize_grow_only(by_col_row_, nnz);
-  fill_.assign(col_start_.begin(), col_start_.end() - 1);
-  for (std::size_t k = 0; k < nnz; ++k) {
-    const auto [i, j] = sorted_[k];
-    by_col_[fill_[j]] = std::int64_t(k);
-    by_col_row_[fill_[j]] = i;
-    ++fill_[j];
-  }
+  // Transposed index: for column j, the stored blocks (i, j) in increasing i, so the lower part of a
+  // row is summed in a fixed order.
+  linalg::transposed_index(n, row_start_, col_, col_start_, by_col_, by_col_row_, fill_);
 }
 
 void BlockSparseMatrix::set_zero() {

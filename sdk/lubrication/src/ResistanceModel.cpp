@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 #include <sstream>
 
 #include "fldsim/error.hpp"
@@ -76,17 +77,16 @@ void describe_lubrication_params(ParamSchema& s) {
            "bit-exact")
       .at_least(0.0)
       .at_most(10.0);
-  s.choice(
-      "preconditioner", std::string("incomplete_cholesky"),
-      {"incomplete_cholesky", "eisenstat_dilu", "block_jacobi"},
-      "CG preconditioner: incomplete_cholesky (block IC(0) on the pair pattern, factorised in reverse "
-      "Cuthill-McKee order of the pair graph whatever the bodies' numbering), eisenstat_dilu "
-      "(block D-ILU on the pair pattern applied with Eisenstat's trick: no product with R inside an "
-      "iteration, so an iteration costs about 0.7 of IC(0)'s, but more iterations where R moves "
-      "fast: measured 7-9 % faster per step on dicolloids at Pe <= 10, 3-4 % slower at Pe 1000 and on "
-      "LAMMPS's documented sphere scene, one thread; "
-      "bench/README.md \"Eisenstat\") or "
-      "block_jacobi (more iterations); the sweeps of the first two run parallel by dependency levels");
+  s.choice("preconditioner", std::string("incomplete_cholesky"),
+           {"incomplete_cholesky", "eisenstat_dilu", "block_jacobi"},
+           "CG preconditioner: incomplete_cholesky (block IC(0) on the pair pattern, factorised in reverse "
+           "Cuthill-McKee order of the pair graph whatever the bodies' numbering), eisenstat_dilu "
+           "(block D-ILU on the pair pattern applied with Eisenstat's trick: no product with R inside an "
+           "iteration, so an iteration costs about 0.7 of IC(0)'s, but more iterations where R moves "
+           "fast: measured 7-9 % faster per step on dicolloids at Pe <= 10, 3-4 % slower at Pe 1000 and on "
+           "LAMMPS's documented sphere scene, one thread; "
+           "bench/README.md \"Eisenstat\") or "
+           "block_jacobi (more iterations); the sweeps of the first two run parallel by dependency levels");
 }
 
 bool lammps_conventions(const Params& p) {
@@ -306,7 +306,7 @@ void ResistanceModel::restore_state(const std::vector<double>& state) {
   // Format 2 starts with -2; format 1 (API 5.1, no marker) resumes correctly but not bit for bit
   // (IC(0)'s row order is computed afresh).
   const bool marked = state[0] == -2.0;
-  const std::vector<double> body(state.begin() + (marked ? 1 : 0), state.end());
+  const std::span<const double> body(state.data() + (marked ? 1 : 0), state.size() - (marked ? 1 : 0));
   auto fail = [](const std::string& what) {
     throw Error("hydro state (the preconditioner's matrix) " + what +
                 "; was the system changed since the checkpoint?");
