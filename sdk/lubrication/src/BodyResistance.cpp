@@ -7,14 +7,13 @@
 
 namespace fldsim::hydro {
 
-Vec3 BodyResistance::strain_arm(const Vec3& separation, const Vec3& centre_separation, double a_a,
-                                double a_b) const {
+Vec3 BodyResistance::strain_arm(const Vec3& separation, const Vec3& centre_separation, double dist,
+                                double a_a, double a_b) const {
   if (options_.strain_arm == StrainArm::Centre) return centre_separation;
   // The centre arm shortened by the node pair's gap: (a_a + a_b) d for spheres (LAMMPS), and for
   // nodes off their body's centre the bodies' relative motion except the gap's own closing. A
   // plain (a_a + a_b) d there ignores the offsets: node pairs of fused dumbbells at Pe = 1000 then
   // approach at O(gammadot a) at contact and overlapped by 0.74 a within 4 strains.
-  const double dist = separation.norm();
   return centre_separation - (dist - a_a - a_b) / dist * separation;
 }
 
@@ -29,12 +28,17 @@ bool BodyResistance::update(const System& system, const NodePairList& pairs) {
   for (const NodePair& p : pairs.pairs()) {
     const Vec3* off_i = offsets.data() + std::size_t(p.body_i) * m;
     const Vec3* off_j = offsets.data() + std::size_t(p.body_j) * m;
-    const double w = visibility_weight(off_i, off_j, radii_.data(), m, p.node_a, p.node_b, p.r,
-                                       options_.cutoff, options_.visibility_width);
+    const double a_a = radii_[p.node_a], a_b = radii_[p.node_b];
+    const double dist = p.r.norm();
+    // With one node per body (spheres) no sibling can hide a node: visibility is the cutoff alone,
+    // visibility_weight's own first test.
+    const double w = m == 1 ? (dist < options_.cutoff * 0.5 * (a_a + a_b) ? 1.0 : 0.0)
+                            : visibility_weight(off_i, off_j, radii_.data(), m, p.node_a, p.node_b, p.r,
+                                                options_.cutoff, options_.visibility_width);
     if (w == 0.0) continue;
     const Vec3 centres = p.r - off_j[p.node_b] + off_i[p.node_a];
-    candidates_.push_back({p.body_i, p.body_j, p.node_a, p.node_b, p.r,
-                           strain_arm(p.r, centres, radii_[p.node_a], radii_[p.node_b]), w});
+    candidates_.push_back(
+        {p.body_i, p.body_j, p.node_a, p.node_b, p.r, strain_arm(p.r, centres, dist, a_a, a_b), w});
   }
   const bool changed = !(candidates_ == accepted_);
   if (changed) {
@@ -104,7 +108,12 @@ void BodyResistance::body_pairs(std::vector<std::pair<std::uint32_t, std::uint32
 }
 
 void BodyResistance::bind(const BlockSparseMatrix& A) {
-  for (Accepted& p : accepted_) p.upper = A.find(p.body_i, p.body_j);
+  opened_.assign(A.col().size(), 0);
+  for (Accepted& p : accepted_) {
+    p.upper = A.find(p.body_i, p.body_j);
+    p.opens_block = p.upper >= 0 && !opened_[std::size_t(p.upper)];
+    if (p.opens_block) opened_[std::size_t(p.upper)] = 1;
+  }
 }
 
 void BodyResistance::add_to(BlockSparseMatrix& A) const {
@@ -117,12 +126,18 @@ void BodyResistance::add_to(BlockSparseMatrix& A) const {
       LubricationPair::centred_gram(c.d, c.c, c.weight, ii, jj, ij);
       A.diagonal(p.body_i) += ii;
       A.diagonal(p.body_j) += jj;
-      A.upper(p.upper) += ij;
+      if (p.opens_block)
+        A.upper(p.upper) = ij;
+      else
+        A.upper(p.upper) += ij;
       continue;
     }
     A.diagonal(p.body_i) += block_ii_[k];
     A.diagonal(p.body_j) += block_jj_[k];
-    A.upper(p.upper) += block_ij_[k];
+    if (p.opens_block)
+      A.upper(p.upper) = block_ij_[k];
+    else
+      A.upper(p.upper) += block_ij_[k];
   }
 }
 
@@ -149,9 +164,7 @@ void BodyResistance::add_strain_force(const Eigen::Matrix3d& E, double* rhs) {
     // Mode velocities of the ambient flow: only the relative velocity E L_ij of node j enters
     // (the rigid part Omega_inf cancels in every mode).
     if (const Centred& c = centred_[k]; c.on) {
-      Eigen::Matrix<double, 12, 1> v = Eigen::Matrix<double, 12, 1>::Zero();
-      v.segment<3>(6) = E * accepted_[k].arm;
-      pair_force_[k] = LubricationPair::centred_wrench(c.d, c.c, c.weight, v);
+      pair_force_[k] = LubricationPair::centred_strain_wrench(c.d, c.c, c.weight, E * accepted_[k].arm);
       continue;
     }
     const Eigen::Matrix<double, LubricationPair::kRows, 1> e =

@@ -144,6 +144,18 @@ Eigen::Matrix<double, 12, 1> LubricationPair::centred_wrench(const Vec3& d, cons
   return out;
 }
 
+Eigen::Matrix<double, 12, 1> LubricationPair::centred_strain_wrench(const Vec3& d,
+                                                                    const LubricationCoefficients& c,
+                                                                    double w, const Vec3& du) {
+  const double d_du = d.dot(du);
+  const Vec3 t = (w * c.shear) * (du - d_du * d);
+  const Vec3 f = (w * c.squeeze * d_du) * d + t;
+  const Vec3 dxt = d.cross(t);
+  Eigen::Matrix<double, 12, 1> out;
+  out << f, c.lever_i * dxt, -f, c.lever_j * dxt;
+  return out;
+}
+
 Eigen::Matrix<double, 12, 1> LubricationPair::centred_noise(const Vec3& d, const LubricationCoefficients& c,
                                                             double w,
                                                             const Eigen::Matrix<double, kRows, 1>& beta) {

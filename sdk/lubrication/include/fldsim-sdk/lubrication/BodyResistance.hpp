@@ -37,7 +37,9 @@ class BodyResistance {
   void body_pairs(std::vector<std::pair<std::uint32_t, std::uint32_t>>& out) const;
   // Remember where each pair's off-diagonal block lives in A (after set_pattern).
   void bind(const BlockSparseMatrix& A);
-  // A += R_delta (values only; the pattern must be bound).
+  // Off-diagonal blocks of A = those of R_delta, diagonal blocks += R_delta's (values only; the
+  // pattern must be bound). Every off-diagonal block of the bound pattern is written (its first
+  // pair's term assigned, later ones added), so A's off-diagonal blocks need no zeroing first.
   void add_to(BlockSparseMatrix& A) const;
   // rhs += R_FE:E_inf of the pairs: -[S_i S_j]^T S_uj E L_ij, with the strain arm L_ij either
   // R_ij = X_j - X_i, the minimum-image centre separation (the relative ambient velocity of the two
@@ -65,10 +67,11 @@ class BodyResistance {
   struct Accepted {
     std::uint32_t body_i, body_j;
     std::uint16_t node_a, node_b;
-    Vec3 separation;          // x(j,b) - x(i,a), minimum image
-    Vec3 arm;                 // strain arm L_ij (see add_strain_force)
-    double weight = 1.0;      // visibility weight w (Visibility.hpp): rows scaled by sqrt(w)
-    std::int64_t upper = -1;  // index of block (i, j) in the matrix
+    Vec3 separation;           // x(j,b) - x(i,a), minimum image
+    Vec3 arm;                  // strain arm L_ij (see add_strain_force)
+    double weight = 1.0;       // visibility weight w (Visibility.hpp): rows scaled by sqrt(w)
+    std::int64_t upper = -1;   // index of block (i, j) in the matrix
+    bool opens_block = false;  // the first accepted pair of block `upper` (add_to assigns its term)
     bool operator==(const Accepted& o) const {
       return body_i == o.body_i && body_j == o.body_j && node_a == o.node_a && node_b == o.node_b;
     }
@@ -77,7 +80,9 @@ class BodyResistance {
 
   void sum_per_body(double* out) const;  // out(6N) += sum of pair_force_ in pair order
 
-  Vec3 strain_arm(const Vec3& separation, const Vec3& centre_separation, double a_a, double a_b) const;
+  // dist = |separation|.
+  Vec3 strain_arm(const Vec3& separation, const Vec3& centre_separation, double dist, double a_a,
+                  double a_b) const;
 
   LubricationOptions options_;
   std::size_t bodies_ = 0;
@@ -94,6 +99,7 @@ class BodyResistance {
   std::vector<Centred> centred_;
   std::vector<Eigen::Matrix<double, 12, 1>> pair_force_;  // scratch: per-pair body wrenches
   std::vector<double> radii_;
+  std::vector<std::uint8_t> opened_;  // scratch of bind(): blocks that already have a first pair
   bool centred_gram_ = true;
 };
 

@@ -97,9 +97,14 @@ class LubricationPair {
   // the tangential t = c_sh (P du + l_i d x w_i + l_j d x w_j):
   //   S^T S v = (-(c_sq (d.du) d + t),  -l_i d x t + c_pu P dw + c_tw (d.dw) d,
   //                c_sq (d.du) d + t,   -l_j d x t - c_pu P dw - c_tw (d.dw) d).
-  // The strain force (v = (0, 0, E L, 0)) and the pair stresslets of spheres use it.
+  // The pair stresslets of spheres use it.
   static Eigen::Matrix<double, 12, 1> centred_wrench(const Vec3& d, const LubricationCoefficients& c,
                                                      double w, const Eigen::Matrix<double, 12, 1>& v);
+  // centred_wrench for v = (0, 0, du, 0), the strain force's only velocity (E L on node j): the
+  // terms of the zero velocities dropped, otherwise the same operations (equal to centred_wrench
+  // up to the sign of zeros).
+  static Eigen::Matrix<double, 12, 1> centred_strain_wrench(const Vec3& d, const LubricationCoefficients& c,
+                                                            double w, const Vec3& du);
   // sqrt(w) S^T beta for centred nodes (the pair's Brownian wrench for the mode normals beta):
   // with s_m = sqrt(w c_m), b = beta[1..3], p = beta[4..6],
   //   (-s_sq beta_0 d - s_sh P b,  -s_sh l_i d x b + s_pu P p + s_tw beta_7 d,
