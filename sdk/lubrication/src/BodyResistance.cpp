@@ -29,7 +29,7 @@ bool BodyResistance::update(const System& system, const NodePairList& pairs) {
     const Vec3* off_i = offsets.data() + std::size_t(p.body_i) * m;
     const Vec3* off_j = offsets.data() + std::size_t(p.body_j) * m;
     const double a_a = radii_[p.node_a], a_b = radii_[p.node_b];
-    const double dist = p.r.norm();
+    const double dist = p.distance;  // |r|, from the neighbour list
     // With one node per body (spheres) no sibling can hide a node: visibility is the cutoff alone,
     // visibility_weight's own first test.
     const double w = m == 1 ? (dist < options_.cutoff * 0.5 * (a_a + a_b) ? 1.0 : 0.0)
