@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <string>
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -362,37 +363,36 @@ INSTANTIATE_TEST_SUITE_P(ResistanceModel, FactorReuseWith,
                                            Preconditioner::EisenstatDilu));
 
 namespace {
-// Sphere pairs two ways: the closed forms of centred node pairs (LubricationPair::centred_*, the
-// default) and the general products of the body rows (set_centred_gram(false)), from the same
-// pairs, with the default options and LAMMPS's forms; calls check(closed, general, system) for
-// each of 2 x 4 configurations and returns the number of pairs seen.
-// (Dicolloids' off-centre nodes take the general products either way, so comparing them here
-// would compare a path with itself; their structured rows S K are checked by
-// BodyResistance.PairForcesConserveMomentum: rigid motions excite no mode.)
+// Node pairs two ways: the closed forms (LubricationPair::centred_*, carried to the bodies where a
+// node is off its body's centre; the default) and the general products of the body rows
+// (set_closed_forms(false)), from the same pairs: spheres and both dicolloids, with the default
+// options, LAMMPS's forms and the smooth visibility rule (weights below 1 for node pairs of
+// dicolloids); calls check(closed, general, system) for each of 3 x 3 x 4 configurations and
+// returns the number of pairs seen.
 template <class Check>
-int for_sphere_pairs_two_ways(Check check) {
+int for_pairs_two_ways(Check check) {
   int pairs = 0;
   for (const Config& setup : kSetups)
-    if (setup.c < 0)  // spheres
-      for (const bool lammps : {false, true})
-        for (const unsigned seed : {3u, 11u, 17u, 29u}) {
-          SCOPED_TRACE(setup.name);
-          System system(shape_of(setup), setup.n, setup.box, physics(1.0, 1.0, 0.3));
-          random_configuration(system, 0.01, seed);
-          LubricationOptions o;
-          if (lammps) {
-            o.pump = PumpForm::Lammps;
-            o.twist = false;
-            o.lever = Lever::Contact;
-          }
-          const NodePairList list = brute_force_pairs(system, o.cutoff);  // unit radii: the pair range
-          BodyResistance closed(o), general(o);
-          general.set_centred_gram(false);
-          closed.update(system, list);
-          general.update(system, list);
-          check(closed, general, system);
-          pairs += int(closed.size());
+    for (const int variant : {0, 1, 2})
+      for (const unsigned seed : {3u, 11u, 17u, 29u}) {
+        SCOPED_TRACE(std::string(setup.name) + ", options " + std::to_string(variant));
+        System system(shape_of(setup), setup.n, setup.box, physics(1.0, 1.0, 0.3));
+        random_configuration(system, 0.01, seed);
+        LubricationOptions o;
+        if (variant == 1) {
+          o.pump = PumpForm::Lammps;
+          o.twist = false;
+          o.lever = Lever::Contact;
         }
+        if (variant == 2) o.visibility_width = 0.1;
+        const NodePairList list = brute_force_pairs(system, o.cutoff);  // unit radii: the pair range
+        BodyResistance closed(o), general(o);
+        general.set_closed_forms(false);
+        closed.update(system, list);
+        general.update(system, list);
+        check(closed, general, system);
+        pairs += int(closed.size());
+      }
   return pairs;
 }
 
@@ -403,11 +403,11 @@ double max_abs(const std::vector<double>& v) {
 }
 }  // namespace
 
-// R_delta of spheres from the closed-form Gram blocks against the general products: agreement to
-// rounding (1e-13 of the largest entry), exact symmetry.
+// R_delta from the closed-form Gram blocks against the general products: agreement to rounding
+// (1e-13 of the largest entry), exact symmetry; spheres and dicolloids.
 TEST(BodyResistance, ClosedFormGramBlocksEqualTheGeneralProducts) {
   const int pairs =
-      for_sphere_pairs_two_ways([](BodyResistance& closed, BodyResistance& general, const System& system) {
+      for_pairs_two_ways([](BodyResistance& closed, BodyResistance& general, const System& system) {
         const auto matrix = [&](BodyResistance& lub) {
           std::vector<std::pair<std::uint32_t, std::uint32_t>> upper;
           lub.body_pairs(upper);
@@ -426,13 +426,14 @@ TEST(BodyResistance, ClosedFormGramBlocksEqualTheGeneralProducts) {
   EXPECT_GT(pairs, 100);  // enough pairs to mean something
 }
 
-// The strain forces R_FE:E, the pairwise Brownian forces and the stresslet sum of spheres from
-// the closed-form pair wrenches against the general row products, summed over the same pairs:
+// The strain forces R_FE:E, the pairwise Brownian forces and the stresslet sum from the
+// closed-form pair wrenches against the general row products, summed over the same pairs (spheres
+// and dicolloids):
 // agreement to rounding (1e-13 of the largest entry), and the test's rows(k) equal to the rows the
 // general path keeps.
 TEST(BodyResistance, ClosedFormPairForcesEqualTheGeneralProducts) {
   const int pairs =
-      for_sphere_pairs_two_ways([](BodyResistance& closed, BodyResistance& general, const System& system) {
+      for_pairs_two_ways([](BodyResistance& closed, BodyResistance& general, const System& system) {
         const std::size_t n6 = 6 * system.size();
         Eigen::Matrix3d E;
         E << 0.1, 0.5, -0.2, 0.5, -0.3, 0.05, -0.2, 0.05, 0.2;  // symmetric, traceless
@@ -447,8 +448,8 @@ TEST(BodyResistance, ClosedFormPairForcesEqualTheGeneralProducts) {
         const RandomStream noise(99, RandomPurpose::PairNoise, 7);
         std::fill(fa.begin(), fa.end(), 0.0);
         std::fill(fb.begin(), fb.end(), 0.0);
-        closed.add_brownian(noise, 1, 1.7, fa.data());
-        general.add_brownian(noise, 1, 1.7, fb.data());
+        closed.add_brownian(noise, system.nodes_per_body(), 1.7, fa.data());
+        general.add_brownian(noise, system.nodes_per_body(), 1.7, fb.data());
         for (std::size_t k = 0; k < n6; ++k) diff[k] = fa[k] - fb[k];
         ASSERT_GT(max_abs(fb), 0.0);
         EXPECT_LE(max_abs(diff), 1e-13 * max_abs(fb)) << "Brownian force";

@@ -7,6 +7,47 @@
 
 namespace fldsim::hydro {
 
+namespace {
+using Mat3 = Eigen::Matrix3d;
+
+// K_x^T G K_y, the node-level 6 x 6 block G carried to two bodies by the node kinematics
+// K_x = [I -X; 0 I] (rigid.hpp node_kinematics, X = [x]x, X^T = -X):
+//   [G11,  G12 - G11 Y;  X G11 + G21,  X (G12 - G11 Y) + G22 - G21 Y].
+// A product with a cross-product matrix is three cross products: rows of M Y are (row of M) x y,
+// columns of X M are x x (column of M); 27 flops each instead of the 45 of a 3 x 3 product.
+Mat6 carried(const Mat6& G, const Vec3& x, const Vec3& y) {
+  const Mat3 G11 = G.topLeftCorner<3, 3>(), G21 = G.bottomLeftCorner<3, 3>();
+  Mat3 top_right, G21Y;
+  for (int r = 0; r < 3; ++r) {
+    top_right.row(r) = G.topRightCorner<3, 3>().row(r) - Vec3(G11.row(r).transpose()).cross(y).transpose();
+    G21Y.row(r) = Vec3(G21.row(r).transpose()).cross(y).transpose();
+  }
+  Mat6 out;
+  out.topLeftCorner<3, 3>() = G11;
+  out.topRightCorner<3, 3>() = top_right;
+  for (int c = 0; c < 3; ++c) {
+    out.block<3, 1>(3, c) = x.cross(Vec3(G11.col(c))) + G21.col(c);
+    out.block<3, 1>(3, 3 + c) =
+        x.cross(Vec3(top_right.col(c))) + G.bottomRightCorner<3, 3>().col(c) - G21Y.col(c);
+  }
+  return out;
+}
+
+// K^T of a node wrench (f, t) -> body wrench (f, t + x x f), for both nodes of a pair wrench.
+Eigen::Matrix<double, 12, 1> carried(Eigen::Matrix<double, 12, 1> w, const Vec3& xa, const Vec3& xb) {
+  w.segment<3>(3) += xa.cross(Vec3(w.segment<3>(0)));
+  w.segment<3>(9) += xb.cross(Vec3(w.segment<3>(6)));
+  return w;
+}
+
+// K of a body velocity (U, Omega) -> node velocity (U + Omega x x, Omega).
+Vec6 node_motion(const Eigen::Map<const Vec6>& body, const Vec3& x) {
+  Vec6 v = body;
+  v.head<3>() += Vec3(body.tail<3>()).cross(x);
+  return v;
+}
+}  // namespace
+
 Vec3 BodyResistance::strain_arm(const Vec3& separation, const Vec3& centre_separation, double dist,
                                 double a_a, double a_b) const {
   if (options_.strain_arm == StrainArm::Centre) return centre_separation;
@@ -30,9 +71,10 @@ bool BodyResistance::update(const System& system, const NodePairList& pairs) {
     const Vec3* off_j = offsets.data() + std::size_t(p.body_j) * m;
     const double a_a = radii_[p.node_a], a_b = radii_[p.node_b];
     const double dist = p.distance;  // |r|, from the neighbour list
-    // With one node per body (spheres) no sibling can hide a node: visibility is the cutoff alone,
-    // visibility_weight's own first test.
-    const double w = m == 1 ? (dist < options_.cutoff * 0.5 * (a_a + a_b) ? 1.0 : 0.0)
+    // The cutoff first (visibility_weight's own first test, on the same distance): most candidates
+    // of the list's skin end here. With one node per body (spheres) no sibling can hide a node.
+    if (dist >= options_.cutoff * 0.5 * (a_a + a_b)) continue;
+    const double w = m == 1 ? 1.0
                             : visibility_weight(off_i, off_j, radii_.data(), m, p.node_a, p.node_b, p.r,
                                                 options_.cutoff, options_.visibility_width);
     if (w == 0.0) continue;
@@ -44,11 +86,10 @@ bool BodyResistance::update(const System& system, const NodePairList& pairs) {
   if (changed) {
     accepted_.swap(candidates_);
     const std::size_t n = accepted_.size();
-    rows_.resize(n);
     block_ii_.resize(n);
     block_jj_.resize(n);
     block_ij_.resize(n);
-    centred_.resize(n);
+    closed_.resize(n);
     pair_force_.resize(n);
   } else {
     for (std::size_t k = 0; k < accepted_.size(); ++k) {
@@ -58,6 +99,8 @@ bool BodyResistance::update(const System& system, const NodePairList& pairs) {
     }
   }
 
+  rows_.resize(closed_forms_ ? 0 : accepted_.size());  // the general path only
+
   const double mu = system.physics().viscosity;
 #pragma omp parallel for schedule(static)
   for (std::int64_t k = 0; k < std::int64_t(accepted_.size()); ++k) {
@@ -65,33 +108,33 @@ bool BodyResistance::update(const System& system, const NodePairList& pairs) {
     LubricationCoefficients c;
     const Vec3& xa = offsets[std::size_t(p.body_i) * m + p.node_a];
     const Vec3& xb = offsets[std::size_t(p.body_j) * m + p.node_b];
-    if (centred_gram_ && xa.isZero(0.0) && xb.isZero(0.0)) {
-      // Both nodes at their bodies' centres (spheres): the pair is its direction and coefficients.
-      // Its Gram blocks (add_to), strain force, Brownian force and stresslet follow from them in
-      // closed form (LubricationPair::centred_*), cheaper than forming and streaming the 8 x 12
-      // rows, let alone three 6 x 6 blocks per pair.
+    if (closed_forms_) {
+      // The pair is its direction and coefficients: its node-level Gram blocks, strain force,
+      // Brownian force and stresslet follow in closed form (LubricationPair::centred_*), cheaper
+      // than forming and streaming the 8 x 12 rows. Nodes at their bodies' centres (spheres) take
+      // their Gram blocks in add_to; off-centre nodes (dicolloids) carry them to the bodies here,
+      // K_a^T G K_b (carried()), 4 structured 3 x 3 products per block instead of a 6 x 8 x 6 one.
       const double dist = p.separation.norm();
       c = LubricationPair::coefficients(radii_[p.node_a], radii_[p.node_b], dist, mu, options_);
-      centred_[k] = {p.separation / dist, c, p.weight, true};
+      const bool offset = !(xa.isZero(0.0) && xb.isZero(0.0));
+      closed_[k] = {p.separation / dist, c, p.weight, xa, xb, true, offset};
+      if (offset) {
+        Mat6 ii, jj, ij;
+        LubricationPair::centred_gram(closed_[k].d, c, p.weight, ii, jj, ij);
+        // Symmetrised so that R is symmetric to the last bit.
+        const Mat6 ci = carried(ii, xa, xa), cj = carried(jj, xb, xb);
+        block_ii_[k] = 0.5 * (ci + ci.transpose());
+        block_jj_[k] = 0.5 * (cj + cj.transpose());
+        block_ij_[k] = carried(ij, xa, xb);
+      }
       continue;
     }
-    centred_[k].on = false;
-    BodyRows& B = rows_[k];
+    // The general path (set_closed_forms(false), the tests' reference): body rows and Gram products.
+    closed_[k].on = false;
     PairRows S;
     LubricationPair::rows(radii_[p.node_a], radii_[p.node_b], p.separation, mu, options_, S, c);
-    // B = S K per node, with K = [I -[x]x; 0 I] (node_kinematics): the translational columns are
-    // S's, the rotational ones S_w + S_u (-[x]x), 72 multiply-adds instead of the 288 of the full
-    // 8x6 by 6x6 product. Lazy (coefficient) products: Eigen 3.4 otherwise sends these small
-    // shapes to its general blocked kernel, which dominated the assembly. (The Gram blocks below
-    // stay general products: a closed form carried by K, four 3x3 products per block, measured
-    // slower than these vectorised 6x8x6 products, 14 % of a fused-dumbbell step against 12 %.)
-    B = S;
-    if (!xa.isZero(0.0))
-      B.middleCols<3>(3).noalias() += S.leftCols<3>().lazyProduct(node_kinematics(xa).topRightCorner<3, 3>());
-    if (!xb.isZero(0.0))
-      B.rightCols<3>().noalias() +=
-          S.middleCols<3>(6).lazyProduct(node_kinematics(xb).topRightCorner<3, 3>());
-    if (p.weight != 1.0) B *= std::sqrt(p.weight);
+    BodyRows& B = rows_[k];
+    B = body_rows(S, xa, xb, p.weight);
     // Gram blocks, symmetrised so that R is symmetric to the last bit.
     const Mat6 ii = B.leftCols<6>().transpose().lazyProduct(B.leftCols<6>());
     const Mat6 jj = B.rightCols<6>().transpose().lazyProduct(B.rightCols<6>());
@@ -100,6 +143,21 @@ bool BodyResistance::update(const System& system, const NodePairList& pairs) {
     block_ij_[k] = B.leftCols<6>().transpose().lazyProduct(B.rightCols<6>());
   }
   return changed;
+}
+
+BodyResistance::BodyRows BodyResistance::body_rows(const PairRows& S, const Vec3& xa, const Vec3& xb,
+                                                   double weight) {
+  // B = S K per node, with K = [I -[x]x; 0 I] (node_kinematics): the translational columns are
+  // S's, the rotational ones S_w + S_u (-[x]x), 72 multiply-adds instead of the 288 of the full
+  // 8x6 by 6x6 product. Lazy (coefficient) products: Eigen 3.4 otherwise sends these small
+  // shapes to its general blocked kernel.
+  BodyRows B = S;
+  if (!xa.isZero(0.0))
+    B.middleCols<3>(3).noalias() += S.leftCols<3>().lazyProduct(node_kinematics(xa).topRightCorner<3, 3>());
+  if (!xb.isZero(0.0))
+    B.rightCols<3>().noalias() += S.middleCols<3>(6).lazyProduct(node_kinematics(xb).topRightCorner<3, 3>());
+  if (weight != 1.0) B *= std::sqrt(weight);
+  return B;
 }
 
 void BodyResistance::body_pairs(std::vector<std::pair<std::uint32_t, std::uint32_t>>& out) const {
@@ -120,8 +178,8 @@ void BodyResistance::add_to(BlockSparseMatrix& A) const {
   // Serial, in pair order: every block receives its terms in a fixed order.
   for (std::size_t k = 0; k < accepted_.size(); ++k) {
     const Accepted& p = accepted_[k];
-    const Centred& c = centred_[k];
-    if (c.on) {
+    const ClosedForm& c = closed_[k];
+    if (c.on && !c.offset) {
       Mat6 ii, jj, ij;
       LubricationPair::centred_gram(c.d, c.c, c.weight, ii, jj, ij);
       A.diagonal(p.body_i) += ii;
@@ -150,12 +208,11 @@ void BodyResistance::sum_per_body(double* out) const {
 }
 
 BodyResistance::BodyRows BodyResistance::rows(std::size_t k) const {
-  const Centred& c = centred_[k];
+  const ClosedForm& c = closed_[k];
   if (!c.on) return rows_[k];
   PairRows S;
   LubricationPair::rows(c.d, c.c, S);
-  if (c.weight != 1.0) S *= std::sqrt(c.weight);
-  return S;
+  return body_rows(S, c.xa, c.xb, c.weight);
 }
 
 void BodyResistance::add_strain_force(const Eigen::Matrix3d& E, double* rhs) {
@@ -163,8 +220,10 @@ void BodyResistance::add_strain_force(const Eigen::Matrix3d& E, double* rhs) {
   for (std::int64_t k = 0; k < std::int64_t(accepted_.size()); ++k) {
     // Mode velocities of the ambient flow: only the relative velocity E L_ij of node j enters
     // (the rigid part Omega_inf cancels in every mode).
-    if (const Centred& c = centred_[k]; c.on) {
-      pair_force_[k] = LubricationPair::centred_strain_wrench(c.d, c.c, c.weight, E * accepted_[k].arm);
+    if (const ClosedForm& c = closed_[k]; c.on) {
+      const Eigen::Matrix<double, 12, 1> w =
+          LubricationPair::centred_strain_wrench(c.d, c.c, c.weight, E * accepted_[k].arm);
+      pair_force_[k] = c.offset ? carried(w, c.xa, c.xb) : w;
       continue;
     }
     const Eigen::Matrix<double, LubricationPair::kRows, 1> e =
@@ -189,8 +248,9 @@ void BodyResistance::add_brownian(const RandomStream& noise, std::size_t nodes_p
       beta[2 * q] = g[0];
       beta[2 * q + 1] = g[1];
     }
-    if (const Centred& c = centred_[k]; c.on) {
-      pair_force_[k] = scale * LubricationPair::centred_noise(c.d, c.c, c.weight, beta);
+    if (const ClosedForm& c = closed_[k]; c.on) {
+      const Eigen::Matrix<double, 12, 1> w = LubricationPair::centred_noise(c.d, c.c, c.weight, beta);
+      pair_force_[k] = scale * (c.offset ? carried(w, c.xa, c.xb) : w);
       continue;
     }
     pair_force_[k] = scale * rows_[k].transpose().lazyProduct(beta);
@@ -205,10 +265,14 @@ Eigen::Matrix3d BodyResistance::stresslet_sum(const Eigen::Matrix3d& E, const do
     const Eigen::Map<const Vec6> dUi(dU + 6 * std::size_t(p.body_i)), dUj(dU + 6 * std::size_t(p.body_j));
     // Hydrodynamic force of the pair on node j (f = -S^T S v, translational rows of node j).
     Vec3 Fj;
-    if (const Centred& c = centred_[k]; c.on) {
+    if (const ClosedForm& c = closed_[k]; c.on) {
       Eigen::Matrix<double, 12, 1> v;
-      v << dUi, dUj;
+      if (c.offset)
+        v << node_motion(dUi, c.xa), node_motion(dUj, c.xb);
+      else
+        v << dUi, dUj;
       v.segment<3>(6) += E * p.arm;
+      // The force on node j is the force on body j (K^T leaves forces alone).
       Fj = LubricationPair::centred_wrench(c.d, c.c, c.weight, v).segment<3>(6);
     } else {
       const BodyRows& B = rows_[k];

@@ -3,13 +3,14 @@
 //     S_i = S[:, 0:6] K(x_a),  S_j = S[:, 6:12] K(x_b),
 // and from them fills R_delta = sum_p [S_i S_j]^T [S_i S_j] into a BlockSparseMatrix, the
 // R_FE:E_inf right-hand side, the pairwise Brownian forces sum_p B_p beta_p (B_p = [S_i S_j]^T)
-// and the pair stresslets. Pairs of nodes at their bodies' centres (spheres) keep only their
-// direction and coefficients and take all of these in closed form (LubricationPair::centred_gram,
-// centred_wrench, centred_noise), equal to the row products to rounding (tests/hydro/
-// ResistancePropertiesTest.cpp). A pair's visibility weight w scales its rows by sqrt(w), hence its
-// resistance and stresslet by w and its Brownian force by sqrt(w) (fluctuation-dissipation kept). Pair work
-// is done in parallel into per-pair buffers and then summed per body in pair order, so results do not depend
-// on the thread count.
+// and the pair stresslets. Each pair keeps only its direction, coefficients and node offsets and
+// takes all of these in closed form (LubricationPair::centred_gram, centred_wrench, centred_noise,
+// node-level), carried to the bodies by K where a node is off its body's centre (dicolloids):
+// K_a^T G K_b for the Gram blocks, K^T for wrenches, K for velocities. Equal to the row products
+// to rounding (tests/hydro/ResistancePropertiesTest.cpp). A pair's visibility weight w scales its rows by
+// sqrt(w), hence its resistance and stresslet by w and its Brownian force by sqrt(w) (fluctuation-dissipation
+// kept). Pair work is done in parallel into per-pair buffers and then summed per body in pair order, so
+// results do not depend on the thread count.
 #pragma once
 
 #include <cstdint>
@@ -53,11 +54,11 @@ class BodyResistance {
   Eigen::Matrix3d stresslet_sum(const Eigen::Matrix3d& E, const double* dU) const;
 
   std::size_t size() const { return accepted_.size(); }
-  // For tests and benchmarks: false evaluates the Gram blocks of centred node pairs by the general
-  // products (the closed form LubricationPair::centred_gram is the default).
-  void set_centred_gram(bool on) { centred_gram_ = on; }
+  // For tests and benchmarks: false forms every pair's body rows [S_i S_j] and its Gram blocks by
+  // the general products (the closed forms are the default).
+  void set_closed_forms(bool on) { closed_forms_ = on; }
   // For tests: body indices and body-level rows [S_i S_j] (8 x 12) of accepted pair k (formed
-  // here for centred pairs, which keep only their direction and coefficients).
+  // here from the closed form's direction, coefficients and offsets).
   std::pair<std::uint32_t, std::uint32_t> bodies(std::size_t k) const {
     return {accepted_[k].body_i, accepted_[k].body_j};
   }
@@ -87,20 +88,25 @@ class BodyResistance {
   LubricationOptions options_;
   std::size_t bodies_ = 0;
   std::vector<Accepted> accepted_, candidates_;
-  std::vector<BodyRows> rows_;  // pairs with an off-centre node only (centred_[k].on false)
+  std::vector<BodyRows> rows_;  // general path only (set_closed_forms(false))
+  // Body-level Gram blocks of pairs with an off-centre node, or of every pair on the general path.
   std::vector<Mat6> block_ii_, block_jj_, block_ij_;
-  // Pairs of centred nodes: their Gram blocks come from LubricationPair::centred_gram in add_to.
-  struct Centred {
+  // A pair in closed form: its direction, coefficients, weight and node offsets; nodes at their
+  // bodies' centres (offset false) take their Gram blocks from LubricationPair::centred_gram in add_to.
+  struct ClosedForm {
     Vec3 d = Vec3::Zero();  // unit separation
     LubricationCoefficients c;
     double weight = 1.0;
+    Vec3 xa = Vec3::Zero(), xb = Vec3::Zero();  // node offsets in bodies i and j (lab frame)
     bool on = false;
+    bool offset = false;  // a node off its body's centre
   };
-  std::vector<Centred> centred_;
+  static BodyRows body_rows(const PairRows& S, const Vec3& xa, const Vec3& xb, double weight);
+  std::vector<ClosedForm> closed_;
   std::vector<Eigen::Matrix<double, 12, 1>> pair_force_;  // scratch: per-pair body wrenches
   std::vector<double> radii_;
   std::vector<std::uint8_t> opened_;  // scratch of bind(): blocks that already have a first pair
-  bool centred_gram_ = true;
+  bool closed_forms_ = true;
 };
 
 }  // namespace fldsim::hydro
