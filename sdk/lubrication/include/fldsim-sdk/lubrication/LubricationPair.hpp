@@ -97,7 +97,7 @@ class LubricationPair {
   // the tangential t = c_sh (P du + l_i d x w_i + l_j d x w_j):
   //   S^T S v = (-(c_sq (d.du) d + t),  -l_i d x t + c_pu P dw + c_tw (d.dw) d,
   //                c_sq (d.du) d + t,   -l_j d x t - c_pu P dw - c_tw (d.dw) d).
-  // The pair stresslets of spheres use it.
+  // The pair stresslets use it (node velocities; BodyResistance carries them from the bodies).
   static Eigen::Matrix<double, 12, 1> centred_wrench(const Vec3& d, const LubricationCoefficients& c,
                                                      double w, const Eigen::Matrix<double, 12, 1>& v);
   // centred_wrench for v = (0, 0, du, 0), the strain force's only velocity (E L on node j): the
