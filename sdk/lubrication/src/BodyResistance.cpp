@@ -80,7 +80,7 @@ bool BodyResistance::update(const System& system, const NodePairList& pairs) {
     if (w == 0.0) continue;
     const Vec3 centres = p.r - off_j[p.node_b] + off_i[p.node_a];
     candidates_.push_back(
-        {p.body_i, p.body_j, p.node_a, p.node_b, p.r, strain_arm(p.r, centres, dist, a_a, a_b), w});
+        {p.body_i, p.body_j, p.node_a, p.node_b, p.r, dist, strain_arm(p.r, centres, dist, a_a, a_b), w});
   }
   const bool changed = !(candidates_ == accepted_);
   if (changed) {
@@ -94,6 +94,7 @@ bool BodyResistance::update(const System& system, const NodePairList& pairs) {
   } else {
     for (std::size_t k = 0; k < accepted_.size(); ++k) {
       accepted_[k].separation = candidates_[k].separation;
+      accepted_[k].distance = candidates_[k].distance;
       accepted_[k].arm = candidates_[k].arm;
       accepted_[k].weight = candidates_[k].weight;
     }
@@ -114,10 +115,9 @@ bool BodyResistance::update(const System& system, const NodePairList& pairs) {
       // than forming and streaming the 8 x 12 rows. Nodes at their bodies' centres (spheres) take
       // their Gram blocks in add_to; off-centre nodes (dicolloids) carry them to the bodies here,
       // K_a^T G K_b (carried()), 4 structured 3 x 3 products per block instead of a 6 x 8 x 6 one.
-      const double dist = p.separation.norm();
-      c = LubricationPair::coefficients(radii_[p.node_a], radii_[p.node_b], dist, mu, options_);
+      c = LubricationPair::coefficients(radii_[p.node_a], radii_[p.node_b], p.distance, mu, options_);
       const bool offset = !(xa.isZero(0.0) && xb.isZero(0.0));
-      closed_[k] = {p.separation / dist, c, p.weight, xa, xb, true, offset};
+      closed_[k] = {p.separation / p.distance, c, p.weight, xa, xb, true, offset};
       if (offset) {
         Mat6 ii, jj, ij;
         LubricationPair::centred_gram(closed_[k].d, c, p.weight, ii, jj, ij);
@@ -175,27 +175,25 @@ void BodyResistance::bind(const BlockSparseMatrix& A) {
 }
 
 void BodyResistance::add_to(BlockSparseMatrix& A) const {
-  // Serial, in pair order: every block receives its terms in a fixed order.
+  // Serial, in pair order: every block receives its terms in a fixed order; a block's first pair
+  // assigns its off-diagonal term (so R needs no zeroing), later pairs add theirs.
   for (std::size_t k = 0; k < accepted_.size(); ++k) {
     const Accepted& p = accepted_[k];
-    const ClosedForm& c = closed_[k];
-    if (c.on && !c.offset) {
-      Mat6 ii, jj, ij;
-      LubricationPair::centred_gram(c.d, c.c, c.weight, ii, jj, ij);
+    const auto add = [&](const Mat6& ii, const Mat6& jj, const Mat6& ij) {
       A.diagonal(p.body_i) += ii;
       A.diagonal(p.body_j) += jj;
       if (p.opens_block)
         A.upper(p.upper) = ij;
       else
         A.upper(p.upper) += ij;
-      continue;
+    };
+    if (const ClosedForm& c = closed_[k]; c.on && !c.offset) {
+      Mat6 ii, jj, ij;
+      LubricationPair::centred_gram(c.d, c.c, c.weight, ii, jj, ij);
+      add(ii, jj, ij);
+    } else {
+      add(block_ii_[k], block_jj_[k], block_ij_[k]);
     }
-    A.diagonal(p.body_i) += block_ii_[k];
-    A.diagonal(p.body_j) += block_jj_[k];
-    if (p.opens_block)
-      A.upper(p.upper) = block_ij_[k];
-    else
-      A.upper(p.upper) += block_ij_[k];
   }
 }
 

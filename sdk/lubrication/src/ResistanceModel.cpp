@@ -200,18 +200,14 @@ void ResistanceModel::assemble(const System& system, const NodePairList& pairs) 
   const std::size_t n = system.size();
   const bool shear = request_.shear && system.physics().shear_rate != 0.0;
   iso_.update(system, E_, shear);
-  bool fresh_pattern = false;
-  if (settings_.lubrication) {
-    if (lub_.update(system, pairs) || A_.blocks() != n) {
-      lub_.body_pairs(body_pairs_);
-      A_.set_pattern(n, body_pairs_);  // values zeroed
-      lub_.bind(A_);
-      fresh_pattern = true;
-    }
+  if (settings_.lubrication && (lub_.update(system, pairs) || A_.blocks() != n)) {
+    lub_.body_pairs(body_pairs_);
+    A_.set_pattern(n, body_pairs_);
+    lub_.bind(A_);
   }
-  // The diagonal is assigned below and lub_.add_to writes every off-diagonal block of its pattern:
-  // zeroing the whole matrix first was 10 % of a sphere assembly (bench/README.md).
-  if (!fresh_pattern && !settings_.lubrication) A_.set_zero();
+  // No zeroing of R (it was 10 % of a sphere assembly, bench/README.md): the diagonal is assigned
+  // here and lub_.add_to writes every off-diagonal block of its pattern (without lubrication the
+  // pattern has none).
   for (std::size_t i = 0; i < n; ++i) A_.diagonal(i) = iso_.block(i);
   std::fill(strain_force_.begin(), strain_force_.end(), 0.0);
   if (shear)

@@ -69,6 +69,7 @@ class BodyResistance {
     std::uint32_t body_i, body_j;
     std::uint16_t node_a, node_b;
     Vec3 separation;           // x(j,b) - x(i,a), minimum image
+    double distance = 0.0;     // |separation|
     Vec3 arm;                  // strain arm L_ij (see add_strain_force)
     double weight = 1.0;       // visibility weight w (Visibility.hpp): rows scaled by sqrt(w)
     std::int64_t upper = -1;   // index of block (i, j) in the matrix
