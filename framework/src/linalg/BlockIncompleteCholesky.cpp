@@ -147,7 +147,10 @@ bool BlockIncompleteCholesky::factorize(const BlockSparseMatrix& A) {
   bool ok = true;
   if (omp_get_max_threads() == 1) {
     // Ascending rows satisfy every dependency and stream through memory.
-    for (std::int64_t i = 0; i < n && ok; ++i) ok = factor_row(A, std::size_t(i));
+    for (std::int64_t i = 0; i < n && ok; ++i) {
+      prefetch_factor_inputs(A, i + linalg::kPrefetchAhead);
+      ok = factor_row(A, std::size_t(i));
+    }
   } else {
     // By levels without barriers, as in apply(): a row waits only for the rows it reads. A row
     // whose pivot fails is still published (its blocks are not used: factorize() returns false).
@@ -160,6 +163,8 @@ bool BlockIncompleteCholesky::factorize(const BlockSparseMatrix& A) {
 #pragma omp for schedule(static) nowait
       for (std::int64_t s = forward_.level_start[l]; s < forward_.level_start[l + 1]; ++s) {
         const std::size_t i = forward_.row[s];
+        if (s + linalg::kPrefetchAhead < n)
+          prefetch_factor_inputs(A, forward_.row[s + linalg::kPrefetchAhead]);
         for (std::int64_t c = col_start_[i]; c < col_start_[i + 1]; ++c)
           linalg::wait_until(done[by_col_row_[c]], epoch);
         if (good.load(std::memory_order_relaxed) && !factor_row(A, i))
@@ -192,6 +197,15 @@ bool BlockIncompleteCholesky::factorize(const BlockSparseMatrix& A) {
   return true;
 }
 
+// The blocks of A that factor_row(p) reads first (A's diagonal and upper blocks of that row, which
+// the factor's row order scatters over A's storage); p out of range: none.
+void BlockIncompleteCholesky::prefetch_factor_inputs(const BlockSparseMatrix& A, std::int64_t p) const {
+  if (p < 0 || p >= std::int64_t(old_of_.size())) return;
+  linalg::prefetch_block(A.diagonal(old_of_[std::size_t(p)]));
+  for (std::int64_t a = row_start_[p]; a < row_start_[p + 1]; ++a)
+    linalg::prefetch_block(A.upper(source_[a] >> 1));
+}
+
 // U^T y = r: y_i = (U_ii^T)^-1 (r_i - sum_{k < i} U_ki^T y_k), into z.
 void BlockIncompleteCholesky::forward_row(std::size_t i, const double* r, double* z) const {
   using linalg::Acc6;
@@ -211,11 +225,15 @@ void BlockIncompleteCholesky::pivot_times(std::size_t i, const linalg::Acc6& acc
   y.store(out);
 }
 
-// U z = y: z_i = U_ii^-1 (y_i - sum_{j > i} U_ij z_j), in place.
+// U z = y: z_i = U_ii^-1 (y_i - sum_{j > i} U_ij z_j), in place. The row's blocks are taken last to
+// first, so that the sweep (rows descending) reads U_f in one descending stream: ascending within a
+// row and descending across rows, the hardware's prefetcher lost it at N = 64000, where the factor
+// comes from memory (this order: -20 % per CG iteration there, -1.4 % per step at N = 1000;
+// bench/README.md, "Sweep direction and prefetching").
 void BlockIncompleteCholesky::backward_row(std::size_t i, double* z) const {
   using linalg::Acc6;
   Acc6 acc = Acc6::load(z + 6 * i);
-  for (std::int64_t a = row_start_[i]; a < row_start_[i + 1]; ++a)
+  for (std::int64_t a = row_start_[i + 1]; a-- > row_start_[i];)
     linalg::accumulate_product<-1>(acc, upper_f_[a].data(), z + 6 * std::size_t(col_[a]));
   linalg::transposed_product(pivot_f_[i].data(), acc).store(z + 6 * i);
 }
@@ -257,6 +275,12 @@ void BlockIncompleteCholesky::apply(const double* r, double* z) const {
 #pragma omp for schedule(static) nowait
       for (std::int64_t s = forward_.level_start[l]; s < forward_.level_start[l + 1]; ++s) {
         const std::size_t i = forward_.row[s];
+        if (s + linalg::kPrefetchAhead < n) {
+          const std::size_t f = forward_.row[s + linalg::kPrefetchAhead];
+          linalg::prefetch_block(pivot_f_[f]);
+          for (std::int64_t c = col_start_[f]; c < col_start_[f + 1]; ++c)
+            linalg::prefetch_block(lower_f_[c]);
+        }
         for (std::int64_t c = col_start_[i]; c < col_start_[i + 1]; ++c)
           linalg::wait_until(done[by_col_row_[c]], fwd);
         forward_row(i, rp, zp);
@@ -267,6 +291,12 @@ void BlockIncompleteCholesky::apply(const double* r, double* z) const {
 #pragma omp for schedule(static) nowait
       for (std::int64_t s = backward_.level_start[l]; s < backward_.level_start[l + 1]; ++s) {
         const std::size_t i = backward_.row[s];
+        if (s + linalg::kPrefetchAhead < n) {
+          const std::size_t f = backward_.row[s + linalg::kPrefetchAhead];
+          linalg::prefetch_block(pivot_f_[f]);
+          for (std::int64_t a = row_start_[f]; a < row_start_[f + 1]; ++a)
+            linalg::prefetch_block(upper_f_[a]);
+        }
         linalg::wait_until(done[i], fwd);  // its own forward result
         for (std::int64_t a = row_start_[i]; a < row_start_[i + 1]; ++a)
           linalg::wait_until(done[col_[a]], bwd);

@@ -44,6 +44,7 @@ class FLDSIM_VISIBLE BlockIncompleteCholesky {
   using Levels = linalg::Levels;
   void analyse(const BlockSparseMatrix& A, bool reorder);
   bool factor_row(const BlockSparseMatrix& A, std::size_t i);
+  void prefetch_factor_inputs(const BlockSparseMatrix& A, std::int64_t p) const;
   void forward_row(std::size_t i, const double* r, double* z) const;
   void backward_row(std::size_t i, double* z) const;
   void pivot_times(std::size_t i, const linalg::Acc6& acc, double* out) const;

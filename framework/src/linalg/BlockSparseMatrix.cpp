@@ -74,6 +74,12 @@ void BlockSparseMatrix::multiply(const double* x, double* y) const {
   // row index, diagonal, upper part by increasing column), so y does not depend on the thread count.
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < n; ++i) {
+    if (const std::int64_t f = i + linalg::kPrefetchAhead; f < n) {
+      linalg::prefetch_block(diag_[std::size_t(f)]);
+      for (std::int64_t k = col_start_[f]; k < col_start_[f + 1]; ++k)
+        linalg::prefetch_block(values_[by_col_[k]]);
+      for (std::int64_t k = row_start_[f]; k < row_start_[f + 1]; ++k) linalg::prefetch_block(values_[k]);
+    }
     Acc6 acc = Acc6::zero();
     for (std::int64_t k = col_start_[i]; k < col_start_[i + 1]; ++k)
       acc += linalg::transposed_product(values_[by_col_[k]].data(), Acc6::load(x + 6 * by_col_row_[k]));

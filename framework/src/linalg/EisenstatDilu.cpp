@@ -73,13 +73,14 @@ void EisenstatDilu::bind(const BlockSparseMatrix& A) {
   pattern_id_ = A.pattern_id();
 }
 
-// out_i = P_i^-1 (in_i - sum_{j > i} A_ij out_j).
+// out_i = P_i^-1 (in_i - sum_{j > i} A_ij out_j), the row's blocks last to first: with the rows
+// descending, one descending stream through A (as IC(0)'s backward_row).
 void EisenstatDilu::backward_row(const BlockSparseMatrix& A, std::size_t i, const double* in,
                                  double* out) const {
   const auto& row_start = A.row_start();
   const auto& col = A.col();
   Acc6 acc = Acc6::load(in + 6 * i);
-  for (std::int64_t a = row_start[i]; a < row_start[i + 1]; ++a)
+  for (std::int64_t a = row_start[i + 1]; a-- > row_start[i];)
     linalg::accumulate_product<-1>(acc, A.upper(a).data(), out + 6 * std::size_t(col[std::size_t(a)]));
   double r[6];
   acc.store(r);
