@@ -87,7 +87,8 @@ class FLDSIM_VISIBLE BlockPCG {
   // Factor the preconditioner (call after each assembly).
   void prepare(const BlockSparseMatrix& A);
   Result solve(const BlockSparseMatrix& A, const double* b, double* x, double tolerance, int max_iterations);
-  // The preconditioner in use after prepare() (IC(0) falls back to block Jacobi on breakdown).
+  // The preconditioner in use after prepare(): on breakdown IC(0) falls back to Eisenstat D-ILU, and
+  // either to block Jacobi.
   Preconditioner active() const;
   // What a checkpoint must carry besides the matrix the preconditioner was built from, so that
   // prepare() on that matrix after a restart builds the same preconditioner (IC(0): its row order

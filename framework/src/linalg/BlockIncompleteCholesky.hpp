@@ -25,7 +25,7 @@ namespace fldsim {
 // depend on it. The factor's rows are in reverse Cuthill-McKee order of A's graph, not the bodies'
 // numbering (CuthillMcKee.hpp: a random numbering more than doubled the iterations at N = 27000). If a pivot
 // block is not positive definite (IC(0) of a general SPD matrix can break down) factorize() returns false and
-// the caller falls back to block Jacobi.
+// BlockPCG falls back to Eisenstat D-ILU (and, if that breaks down too, to block Jacobi).
 class FLDSIM_VISIBLE BlockIncompleteCholesky {
  public:
   bool factorize(const BlockSparseMatrix& A);

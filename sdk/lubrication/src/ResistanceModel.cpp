@@ -72,7 +72,8 @@ void describe_lubrication_params(ParamSchema& s) {
            "an assembly reuses the last CG preconditioner (IC(0) factor or D-ILU pivots), within the "
            "step and across steps, while R has moved by at most this fraction since it was built: its "
            "diagonal blocks in one Frobenius norm over all bodies (incomplete_cholesky), or each body's "
-           "block row against its diagonal block (eisenstat_dilu, where the default is 0.3); 0: rebuild "
+           "block row against its diagonal block (eisenstat_dilu, also as IC(0)'s fallback; there the "
+           "measured best is 0.3); 0: rebuild "
            "at every assembly. The matrix it was built from is saved in checkpoints, so --resume stays "
            "bit-exact")
       .at_least(0.0)
@@ -80,7 +81,8 @@ void describe_lubrication_params(ParamSchema& s) {
   s.choice("preconditioner", std::string("incomplete_cholesky"),
            {"incomplete_cholesky", "eisenstat_dilu", "block_jacobi"},
            "CG preconditioner: incomplete_cholesky (block IC(0) on the pair pattern, factorised in reverse "
-           "Cuthill-McKee order of the pair graph whatever the bodies' numbering), eisenstat_dilu "
+           "Cuthill-McKee order of the pair graph whatever the bodies' numbering; where IC(0) breaks down, "
+           "a pivot block not positive definite, that factorisation uses eisenstat_dilu), eisenstat_dilu "
            "(block D-ILU on the pair pattern applied with Eisenstat's trick: no product with R inside an "
            "iteration, so an iteration costs about 0.7 of IC(0)'s, but more iterations where R moves "
            "fast: measured 7-9 % faster per step on dicolloids at Pe <= 10, 3-4 % slower at Pe 1000 and on "
@@ -237,7 +239,7 @@ bool ResistanceModel::reuse_factor() const {
   if (!has_factor_ || settings_.refactor_threshold <= 0.0 || factor_source_.blocks() != A_.blocks())
     return false;
   const double t2 = settings_.refactor_threshold * settings_.refactor_threshold;
-  if (settings_.preconditioner == Preconditioner::EisenstatDilu) {
+  if (pcg_.active() == Preconditioner::EisenstatDilu) {  // chosen, or IC(0)'s fallback
     // Block row by block row: the old pivots meet the current off-diagonal blocks (EisenstatDilu.hpp),
     // so what spoils a body's pivot is any change in its row, its couplings included (a pair closing
     // in, or dicolloids turning at high Pe), whatever the other bodies do:
