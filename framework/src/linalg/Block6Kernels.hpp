@@ -46,8 +46,16 @@ struct Acc6 {
 // storage) and the multi-threaded passes read rows in level order. At N = 64000 (about 140 MB of
 // matrix and factor, read from memory) asking kPrefetchAhead rows ahead cut the factorisation's
 // share of a step by 8 % (bench/README.md, "Sweep direction and prefetching"). A streaming loop
-// gains nothing from it (the hardware follows a single stream). Only a hint: no result changes.
+// gains nothing from it (the hardware follows a single stream), nor does a matrix that sits in the
+// caches (N = 1000: two threads were 3 % slower with it), hence only from kPrefetchFromRows block
+// rows on. Only a hint: no result changes.
 constexpr std::int64_t kPrefetchAhead = 4;
+constexpr std::int64_t kPrefetchFromRows = 4096;
+
+// How many rows ahead a pass over `rows` block rows asks for its blocks (0: not at all).
+inline std::int64_t prefetch_distance(std::int64_t rows) {
+  return rows >= kPrefetchFromRows ? kPrefetchAhead : 0;
+}
 
 template <class Block>
 inline void prefetch_block(const Block& b) {

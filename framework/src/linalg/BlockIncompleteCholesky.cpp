@@ -147,8 +147,9 @@ bool BlockIncompleteCholesky::factorize(const BlockSparseMatrix& A) {
   bool ok = true;
   if (omp_get_max_threads() == 1) {
     // Ascending rows satisfy every dependency and stream through memory.
+    const std::int64_t ahead = linalg::prefetch_distance(n);
     for (std::int64_t i = 0; i < n && ok; ++i) {
-      prefetch_factor_inputs(A, i + linalg::kPrefetchAhead);
+      if (ahead > 0) prefetch_factor_inputs(A, i + ahead);
       ok = factor_row(A, std::size_t(i));
     }
   } else {
@@ -157,14 +158,13 @@ bool BlockIncompleteCholesky::factorize(const BlockSparseMatrix& A) {
     std::atomic<bool> good{true};
     std::atomic<std::uint64_t>* done = flags_.rows(std::size_t(n));
     const std::uint64_t epoch = flags_.epochs(1);
-    const std::int64_t levels = std::int64_t(forward_.levels());
+    const std::int64_t levels = std::int64_t(forward_.levels()), ahead = linalg::prefetch_distance(n);
 #pragma omp parallel
     for (std::int64_t l = 0; l < levels; ++l) {
 #pragma omp for schedule(static) nowait
       for (std::int64_t s = forward_.level_start[l]; s < forward_.level_start[l + 1]; ++s) {
         const std::size_t i = forward_.row[s];
-        if (s + linalg::kPrefetchAhead < n)
-          prefetch_factor_inputs(A, forward_.row[s + linalg::kPrefetchAhead]);
+        if (ahead > 0 && s + ahead < n) prefetch_factor_inputs(A, forward_.row[s + ahead]);
         for (std::int64_t c = col_start_[i]; c < col_start_[i + 1]; ++c)
           linalg::wait_until(done[by_col_row_[c]], epoch);
         if (good.load(std::memory_order_relaxed) && !factor_row(A, i))
@@ -267,6 +267,7 @@ void BlockIncompleteCholesky::apply(const double* r, double* z) const {
   std::atomic<std::uint64_t>* done = flags_.rows(std::size_t(n));
   const std::uint64_t fwd = flags_.epochs(2), bwd = fwd + 1;
   const std::int64_t forward = std::int64_t(forward_.levels()), backward = std::int64_t(backward_.levels());
+  const std::int64_t ahead = linalg::prefetch_distance(n);
 #pragma omp parallel
   {
 #pragma omp for schedule(static)
@@ -275,8 +276,8 @@ void BlockIncompleteCholesky::apply(const double* r, double* z) const {
 #pragma omp for schedule(static) nowait
       for (std::int64_t s = forward_.level_start[l]; s < forward_.level_start[l + 1]; ++s) {
         const std::size_t i = forward_.row[s];
-        if (s + linalg::kPrefetchAhead < n) {
-          const std::size_t f = forward_.row[s + linalg::kPrefetchAhead];
+        if (ahead > 0 && s + ahead < n) {
+          const std::size_t f = forward_.row[s + ahead];
           linalg::prefetch_block(pivot_f_[f]);
           for (std::int64_t c = col_start_[f]; c < col_start_[f + 1]; ++c)
             linalg::prefetch_block(lower_f_[c]);
@@ -291,8 +292,8 @@ void BlockIncompleteCholesky::apply(const double* r, double* z) const {
 #pragma omp for schedule(static) nowait
       for (std::int64_t s = backward_.level_start[l]; s < backward_.level_start[l + 1]; ++s) {
         const std::size_t i = backward_.row[s];
-        if (s + linalg::kPrefetchAhead < n) {
-          const std::size_t f = backward_.row[s + linalg::kPrefetchAhead];
+        if (ahead > 0 && s + ahead < n) {
+          const std::size_t f = backward_.row[s + ahead];
           linalg::prefetch_block(pivot_f_[f]);
           for (std::int64_t a = row_start_[f]; a < row_start_[f + 1]; ++a)
             linalg::prefetch_block(upper_f_[a]);

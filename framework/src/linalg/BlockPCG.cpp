@@ -61,7 +61,7 @@ void BlockPCG::prepare(const BlockSparseMatrix& A) {
   }
   // IC(0) can break down on an SPD matrix (the fill it drops can leave a pivot block indefinite;
   // seen in the reverse Cuthill-McKee order of 1000 spheres near a periodic cubic lattice at
-  // phi 0.3, where block Jacobi then took 294 CG iterations per step against 30): D-ILU next. It
+  // phi 0.3, where block Jacobi then took 175 CG iterations per step against 25): D-ILU next. It
   // factorises in the bodies' own numbering and updates only the pivots, so it breaks down on
   // other matrices than IC(0) does; block Jacobi is the last resort (its pivots are R's own
   // diagonal blocks, always positive definite).

@@ -72,9 +72,10 @@ void BlockSparseMatrix::multiply(const double* x, double* y) const {
   }
   // Each block row is owned by one thread and summed in a fixed order (lower part by increasing
   // row index, diagonal, upper part by increasing column), so y does not depend on the thread count.
+  const std::int64_t ahead = linalg::prefetch_distance(n);
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < n; ++i) {
-    if (const std::int64_t f = i + linalg::kPrefetchAhead; f < n) {
+    if (const std::int64_t f = i + ahead; ahead > 0 && f < n) {
       linalg::prefetch_block(diag_[std::size_t(f)]);
       for (std::int64_t k = col_start_[f]; k < col_start_[f + 1]; ++k)
         linalg::prefetch_block(values_[by_col_[k]]);
