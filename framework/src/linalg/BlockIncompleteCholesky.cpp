@@ -228,8 +228,8 @@ void BlockIncompleteCholesky::pivot_times(std::size_t i, const linalg::Acc6& acc
 // U z = y: z_i = U_ii^-1 (y_i - sum_{j > i} U_ij z_j), in place. The row's blocks are taken last to
 // first, so that the sweep (rows descending) reads U_f in one descending stream: ascending within a
 // row and descending across rows, the hardware's prefetcher lost it at N = 64000, where the factor
-// comes from memory (this order: -20 % per CG iteration there, -1.4 % per step at N = 1000;
-// bench/README.md, "Sweep direction and prefetching").
+// comes from memory (this order: -17 % per CG iteration there, -1.6 % per step on the documented
+// N = 1000 scene; bench/README.md, "Sweep direction and prefetching").
 void BlockIncompleteCholesky::backward_row(std::size_t i, double* z) const {
   using linalg::Acc6;
   Acc6 acc = Acc6::load(z + 6 * i);
