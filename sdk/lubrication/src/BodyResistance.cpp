@@ -10,27 +10,53 @@ namespace fldsim::hydro {
 namespace {
 using Mat3 = Eigen::Matrix3d;
 
-// K_x^T G K_y, the node-level 6 x 6 block G carried to two bodies by the node kinematics
-// K_x = [I -X; 0 I] (rigid.hpp node_kinematics, X = [x]x, X^T = -X):
-//   [G11,  G12 - G11 Y;  X G11 + G21,  X (G12 - G11 Y) + G22 - G21 Y].
-// A product with a cross-product matrix is three cross products: rows of M Y are (row of M) x y,
-// columns of X M are x x (column of M); 27 flops each instead of the 45 of a 3 x 3 product.
-Mat6 carried(const Mat6& G, const Vec3& x, const Vec3& y) {
-  const Mat3 G11 = G.topLeftCorner<3, 3>(), G21 = G.bottomLeftCorner<3, 3>();
-  Mat3 top_right, G21Y;
-  for (int r = 0; r < 3; ++r) {
-    top_right.row(r) = G.topRightCorner<3, 3>().row(r) - Vec3(G11.row(r).transpose()).cross(y).transpose();
-    G21Y.row(r) = Vec3(G21.row(r).transpose()).cross(y).transpose();
-  }
-  Mat6 out;
-  out.topLeftCorner<3, 3>() = G11;
-  out.topRightCorner<3, 3>() = top_right;
-  for (int c = 0; c < 3; ++c) {
-    out.block<3, 1>(3, c) = x.cross(Vec3(G11.col(c))) + G21.col(c);
-    out.block<3, 1>(3, 3 + c) =
-        x.cross(Vec3(top_right.col(c))) + G.bottomRightCorner<3, 3>().col(c) - G21Y.col(c);
-  }
-  return out;
+// [x]x, the cross-product matrix: [x]x v = x x v.
+Mat3 cross_matrix(const Vec3& x) {
+  Mat3 X;
+  X << 0.0, -x.z(), x.y(), x.z(), 0.0, -x.x(), -x.y(), x.x(), 0.0;
+  return X;
+}
+
+// The body-level Gram blocks of a node pair off its bodies' centres, in closed form. With the node
+// velocity U + Omega x x (rigid.hpp node_kinematics), the pair's modes over (U_i, Omega_i, U_j,
+// Omega_j) are the squeeze row (-d, -e_a, d, e_b) with e_x = x x d, the shear rows
+// (-P, M_a, P, N_b) with M_a = P[a]x + l_i [d]x and N_b = -P[b]x + l_j [d]x (both map into the plane
+// normal to d, so P M_a = M_a), the pump rows (0, P, 0, -P) and the twist row (0, d, 0, -d)
+// (LubricationPair::centred_wrench's modes). Their Gram sq s^T s + sh T^T T + pu Q^T Q + tw t^T t,
+// block by block (dd = d d^T, P = I - dd):
+//   ii = [sq dd + sh P,  sq d e_a^T - sh M_a;  (.)^T,  sq e_a e_a^T + sh M_a^T M_a + pu P + tw dd]
+//   jj = [sq dd + sh P,  sq d e_b^T + sh N_b;  (.)^T,  sq e_b e_b^T + sh N_b^T N_b + pu P + tw dd]
+//   ij = [-(sq dd + sh P),  -sq d e_b^T - sh N_b;  -sq e_a d^T + sh M_a^T,
+//         -sq e_a e_b^T + sh M_a^T N_b - pu P - tw dd]
+// This is K_a^T G K_b of the node blocks (LubricationPair::centred_gram), with three 3 x 3 products
+// per pair instead of twelve cross-product passes per block (bench/README.md, "Dicolloid node pairs
+// without carried blocks"). The rotation blocks of ii and jj are symmetrised so that R is symmetric
+// to the last bit.
+void offset_gram(const Vec3& d, const LubricationCoefficients& c, double w, const Vec3& a, const Vec3& b,
+                 Mat6& ii, Mat6& jj, Mat6& ij) {
+  const double sq = w * c.squeeze, sh = w * c.shear, pu = w * c.pump, tw = w * c.twist;
+  const Mat3 dd = d * d.transpose();
+  const Mat3 P = Mat3::Identity() - dd;
+  const Mat3 D = cross_matrix(d);
+  const Mat3 Ma = P * cross_matrix(a) + c.lever_i * D;
+  const Mat3 Nb = c.lever_j * D - P * cross_matrix(b);
+  const Vec3 ea = a.cross(d), eb = b.cross(d);
+  const Mat3 uu = sq * dd + sh * P, rr = pu * P + tw * dd;
+  const Mat3 Mt = Ma.transpose();
+  ii.topLeftCorner<3, 3>() = uu;
+  ii.topRightCorner<3, 3>() = sq * d * ea.transpose() - sh * Ma;
+  ii.bottomLeftCorner<3, 3>() = ii.topRightCorner<3, 3>().transpose();
+  Mat3 r = sq * ea * ea.transpose() + sh * Mt * Ma + rr;
+  ii.bottomRightCorner<3, 3>() = 0.5 * (r + r.transpose());
+  jj.topLeftCorner<3, 3>() = uu;
+  jj.topRightCorner<3, 3>() = sq * d * eb.transpose() + sh * Nb;
+  jj.bottomLeftCorner<3, 3>() = jj.topRightCorner<3, 3>().transpose();
+  r = sq * eb * eb.transpose() + sh * Nb.transpose() * Nb + rr;
+  jj.bottomRightCorner<3, 3>() = 0.5 * (r + r.transpose());
+  ij.topLeftCorner<3, 3>() = -uu;
+  ij.topRightCorner<3, 3>() = -sq * d * eb.transpose() - sh * Nb;
+  ij.bottomLeftCorner<3, 3>() = sh * Mt - sq * ea * d.transpose();
+  ij.bottomRightCorner<3, 3>() = sh * Mt * Nb - sq * ea * eb.transpose() - rr;
 }
 
 // K^T of a node wrench (f, t) -> body wrench (f, t + x x f), for both nodes of a pair wrench.
@@ -113,20 +139,12 @@ bool BodyResistance::update(const System& system, const NodePairList& pairs) {
       // The pair is its direction and coefficients: its node-level Gram blocks, strain force,
       // Brownian force and stresslet follow in closed form (LubricationPair::centred_*), cheaper
       // than forming and streaming the 8 x 12 rows. Nodes at their bodies' centres (spheres) take
-      // their Gram blocks in add_to; off-centre nodes (dicolloids) carry them to the bodies here,
-      // K_a^T G K_b (carried()), 4 structured 3 x 3 products per block instead of a 6 x 8 x 6 one.
+      // their Gram blocks in add_to; off-centre nodes (dicolloids) get their body blocks here in
+      // closed form (offset_gram()), instead of three 6 x 8 x 6 Gram products.
       c = LubricationPair::coefficients(radii_[p.node_a], radii_[p.node_b], p.distance, mu, options_);
       const bool offset = !(xa.isZero(0.0) && xb.isZero(0.0));
       closed_[k] = {p.separation / p.distance, c, p.weight, xa, xb, true, offset};
-      if (offset) {
-        Mat6 ii, jj, ij;
-        LubricationPair::centred_gram(closed_[k].d, c, p.weight, ii, jj, ij);
-        // Symmetrised so that R is symmetric to the last bit.
-        const Mat6 ci = carried(ii, xa, xa), cj = carried(jj, xb, xb);
-        block_ii_[k] = 0.5 * (ci + ci.transpose());
-        block_jj_[k] = 0.5 * (cj + cj.transpose());
-        block_ij_[k] = carried(ij, xa, xb);
-      }
+      if (offset) offset_gram(closed_[k].d, c, p.weight, xa, xb, block_ii_[k], block_jj_[k], block_ij_[k]);
       continue;
     }
     // The general path (set_closed_forms(false), the tests' reference): body rows and Gram products.
