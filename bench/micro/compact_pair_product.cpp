@@ -48,11 +48,14 @@ int main(int argc, char** argv) {
   for (int i = 0; i < n; ++i) Dg[i] = Mat6::Identity() * 10;
   std::vector<double> x(6 * n), y(6 * n), y2(6 * n);
   for (auto& v : x) v = u(g);
-  auto dense = [&] {
-    std::fill(y.begin(), y.end(), 0.0);
+  auto diagonal_part = [&](std::vector<double>& out) {  // out = diag(A) x, the same in both forms
+    std::fill(out.begin(), out.end(), 0.0);
     for (int i = 0; i < n; ++i)
-      Eigen::Map<Eigen::Matrix<double, 6, 1>>(&y[6 * i]) +=
+      Eigen::Map<Eigen::Matrix<double, 6, 1>>(&out[6 * i]) +=
           Dg[i] * Eigen::Map<const Eigen::Matrix<double, 6, 1>>(&x[6 * i]);
+  };
+  auto dense = [&] {
+    diagonal_part(y);
     for (size_t k = 0; k < m; ++k) {
       int i = I[k], j = J[k];
       Eigen::Map<Eigen::Matrix<double, 6, 1>> yi(&y[6 * i]), yj(&y[6 * j]);
@@ -62,10 +65,7 @@ int main(int argc, char** argv) {
     }
   };
   auto compact = [&] {
-    std::fill(y2.begin(), y2.end(), 0.0);
-    for (int i = 0; i < n; ++i)
-      Eigen::Map<Eigen::Matrix<double, 6, 1>>(&y2[6 * i]) +=
-          Dg[i] * Eigen::Map<const Eigen::Matrix<double, 6, 1>>(&x[6 * i]);
+    diagonal_part(y2);
     for (size_t k = 0; k < m; ++k) {
       const Pair& p = P[k];
       int i = I[k], j = J[k];

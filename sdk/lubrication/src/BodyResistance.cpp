@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "CrossMatrix.hpp"
 #include "fldsim-sdk/lubrication/Visibility.hpp"
 #include "fldsim/rigid.hpp"
 
@@ -9,13 +10,6 @@ namespace fldsim::hydro {
 
 namespace {
 using Mat3 = Eigen::Matrix3d;
-
-// [x]x, the cross-product matrix: [x]x v = x x v.
-Mat3 cross_matrix(const Vec3& x) {
-  Mat3 X;
-  X << 0.0, -x.z(), x.y(), x.z(), 0.0, -x.x(), -x.y(), x.x(), 0.0;
-  return X;
-}
 
 // The body-level Gram blocks of a node pair off its bodies' centres, in closed form. With the node
 // velocity U + Omega x x (rigid.hpp node_kinematics), the pair's modes over (U_i, Omega_i, U_j,

@@ -3,17 +3,14 @@
 #include <algorithm>
 #include <cmath>
 
+#include "CrossMatrix.hpp"
+
 namespace fldsim::hydro {
 
 namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kZeta3 = 1.2020569031595942;  // Riemann zeta(3)
 
-Eigen::Matrix3d cross_matrix(const Vec3& d) {
-  Eigen::Matrix3d m;
-  m << 0.0, -d.z(), d.y(), d.z(), 0.0, -d.x(), -d.y(), d.x(), 0.0;
-  return m;
-}
 }  // namespace
 
 double taper_factor(double r_over_abar, const LubricationOptions& options) {

@@ -6,7 +6,8 @@
 // and the pair stresslets. Each pair keeps only its direction, coefficients and node offsets and
 // takes all of these in closed form (LubricationPair::centred_gram, centred_wrench, centred_noise,
 // node-level), carried to the bodies by K where a node is off its body's centre (dicolloids):
-// K_a^T G K_b for the Gram blocks, K^T for wrenches, K for velocities. Equal to the row products
+// K_a^T G K_b for the Gram blocks (written out from the pair's modes in body coordinates), K^T for
+// wrenches, K for velocities. Equal to the row products
 // to rounding (tests/hydro/ResistancePropertiesTest.cpp). A pair's visibility weight w scales its rows by
 // sqrt(w), hence its resistance and stresslet by w and its Brownian force by sqrt(w) (fluctuation-dissipation
 // kept). Pair work is done in parallel into per-pair buffers and then summed per body in pair order, so
