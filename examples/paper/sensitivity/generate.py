@@ -36,6 +36,12 @@ Variants (one change each against the current defaults):
   smoothvis    `hydro.visibility: smooth` (the node visibility rule as a C2 weight, docs/lubrication-taper.md)
   lammpslens-smoothvis  lammpslens with the smooth visibility (-replica: other seeds; 005, 02: width
                0.05 a, 0.2 a); lammps-smoothvis, lens-smoothvis: one of the two with it
+  phiX, homo-phiX, phiX-r2, homo-phiX-r2, phiX-n1000
+               the volume-fraction scan (kT = 0, tolerance 1e-4 a, strains 0-500 averaged over
+               150-500): fused dumbbells (phiX) and homonuclear c/a 0.2 (homo-phiX) at phi X =
+               0.1 ... 0.3, two seeds (-r2: Monte Carlo seed 2, noise seed 43), N = 1000 for the
+               fused ones at 0.1-0.25; phi_scan.py summarises them
+  peP-phi0.1   Brownian fused dumbbells at phi 0.1 and Pe P = 0.1 ... 1000 (-r2: other seeds)
 """
 import os
 
@@ -71,18 +77,41 @@ VARIANTS = {
     "lammpslens-smoothvis02": {"hydro": "conventions: lammps, visibility: smooth, visibility_width: 0.2",
                                "phi": 0.2531},
 }
+# The volume-fraction scan at kT = 0 (tolerance 1e-4 a, the current default): where does each
+# shape change from velocity-gradient to vorticity alignment? The companion non-Brownian study
+# (kumar_jor) found velocity-gradient alignment at low phi for both shapes, vorticity alignment at
+# high phi; the seed paper puts the fused dumbbells' change above phi = 0.3, the homonuclear one's
+# below it.
+# Strains 0-500 averaged over 150-500 (at phi 0.1 the homonuclear orientation still drifts after
+# 100 strains), two seeds each; -r2: Monte Carlo seed 2, noise seed 43.
 LONG = {"duration": 500.0, "start": 150.0}
+for _phi in [0.1, 0.15, 0.2, 0.25, 0.3]:
+    for _shape, _c in [("", 1), ("homo-", 0.2)]:
+        for _rep, _seed in [("", (1, 42)), ("-r2", (2, 43))]:
+            VARIANTS[f"{_shape}phi{_phi:g}{_rep}"] = dict(LONG, phi=_phi, c=_c, tolerance="1.0e-4", seed=_seed)
+# At N = 216 two seeds differ by up to 0.03 at phi 0.15-0.2 (more than their blocking SEs): N = 1000
+# for the fused dumbbells where the sign changes.
+for _phi in [0.1, 0.15, 0.2, 0.25]:
+    VARIANTS[f"phi{_phi:g}-n1000"] = dict(LONG, phi=_phi, tolerance="1.0e-4", count=1000)
+# The paper's Pe sweep (its Fig. 8f: delta_theta_m rising with Pe) at phi 0.1, where fldsim's
+# fused dumbbells align with the velocity-gradient plane at kT = 0: Brownian, strains 0-500
+# averaged over 150-500 (Pe 0.1: the paper's dt 1e-4 a^2/D0 over 0-200 a^2/D0, averaged over
+# 50-200, about 150 rotational decorrelation times).
+for _pe in [1, 10, 100, 1000]:
+    VARIANTS[f"pe{_pe:g}-phi0.1"] = dict(LONG, phi=0.1, pe=_pe)
+VARIANTS["pe1000-phi0.1-r2"] = dict(LONG, phi=0.1, pe=1000, seed=(2, 43))
+VARIANTS["pe0.1-phi0.1"] = {"phi": 0.1, "pe": 0.1, "dt": 1e-4, "duration": 200.0, "start": 50.0}
 VARIANTS["long"] = dict(LONG)
 for _name in ["lammps", "lens", "lammpslens", "oldforms", "notaper", "lammpslens-smoothvis",
               "lammpslens-smoothvis-replica"]:
     VARIANTS["long-" + _name] = dict(VARIANTS[_name], **LONG)
 BROWNIAN = ["baseline", "lammps", "lens", "lammpslens", "notaper", "isobody", "rep100", "replica", "oldforms",
-            "smoothvis", "lammpslens-smoothvis"]
+            "smoothvis", "lammpslens-smoothvis"] + [v for v in VARIANTS if v.startswith("pe")]
 NOBROWN = ["baseline", "replica", "lammps", "oldforms", "lens", "isobody", "rep100", "lammpslens", "notaper", "centrearm", "lever", "pump", "twist", "khfit", "long",
            "long-lammps", "long-lens", "long-lammpslens", "long-oldforms", "long-notaper", "n1000", "fixeddt",
            "smoothvis", "lammpslens-smoothvis", "lammpslens-smoothvis-replica", "lammps-smoothvis",
            "lens-smoothvis", "lammpslens-smoothvis005", "lammpslens-smoothvis02", "long-lammpslens-smoothvis",
-           "long-lammpslens-smoothvis-replica"]
+           "long-lammpslens-smoothvis-replica"] + [v for v in VARIANTS if "phi" in v and v[:3] in ("phi", "hom")]
 
 
 def experiment(name, variant, brownian):
@@ -91,9 +120,10 @@ def experiment(name, variant, brownian):
     hydro = "{plugin: fld" + (", " + v["hydro"] if "hydro" in v else "") + "}"
     duration, start = v.get("duration", DURATION), v.get("start", START)
     if brownian:
-        flow = "{peclet: 1000}"
-        run = f"{{dt: 0.001, duration: {duration:g}, time_unit: paper, seed: {noise_seed}, threads: 1, checkpoint_every: {CHECKPOINT:g}}}"
-        every = int(round(SAMPLE / 0.001))
+        pe, dt = v.get("pe", 1000), v.get("dt", 0.001)
+        flow = f"{{peclet: {pe:g}}}"
+        run = f"{{dt: {dt:g}, duration: {duration:g}, time_unit: paper, seed: {noise_seed}, threads: 1, checkpoint_every: {CHECKPOINT:g}}}"
+        every = int(round(SAMPLE / dt))
     elif "dt" in v:
         flow = "{peclet: 1000, brownian: false}"
         run = (f"{{dt: {v['dt']:g}, duration: {duration:g}, time_unit: paper, seed: {noise_seed}, threads: 1, "
@@ -101,13 +131,13 @@ def experiment(name, variant, brownian):
         every = int(round(SAMPLE / v["dt"]))
     else:
         flow = "{peclet: 1000, brownian: false}"
-        run = (f"{{dt: auto, dt_max: 0.01, tolerance: 1.0e-3, duration: {duration:g}, time_unit: paper, "
+        run = (f"{{dt: auto, dt_max: 0.01, tolerance: {v.get('tolerance', '1.0e-3')}, duration: {duration:g}, time_unit: paper, "
                f"seed: {noise_seed}, threads: 1, checkpoint_every: {CHECKPOINT:g}}}")
         every = int(round(SAMPLE / 0.01))  # frames of dt_max
-    return f"""# Issue 12 sensitivity study, variant {variant} ({'Brownian, Pe = 1000' if brownian else 'kT = 0'}).
+    return f"""# Issue 12 sensitivity study, variant {variant} ({f"Brownian, Pe = {v.get('pe', 1000):g}" if brownian else 'kT = 0'}).
 # Generated by examples/paper/sensitivity/generate.py -- edit that script, not this file.
 system:
-  shape: {{plugin: dicolloid, a: 1.0, b: 1.0, c: 1}}
+  shape: {{plugin: dicolloid, a: 1.0, b: 1.0, c: {v.get('c', 1):g}}}
   count: {v.get('count', N)}
   volume_fraction: {v.get('phi', 0.3):g}
   init: {{method: monte_carlo, seed: {mc_seed}}}

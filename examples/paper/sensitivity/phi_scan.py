@@ -1,0 +1,140 @@
+#!/usr/bin/python3
+"""The volume-fraction scan of the issue-12 study (docs/paper-sensitivity.md, "Where the sign
+changes"): delta_theta_m and S_zz of fused dumbbells (c/a 1) and homonuclear dicolloids (c/a 0.2)
+at kT = 0 against phi, and of fused dumbbells at phi 0.1 against Pe (Brownian).
+
+usage: phi_scan.py [RESULTS_DIR [OUT_PREFIX]]
+  RESULTS_DIR  the study's result files (default: results/sensitivity of the repository)
+  OUT_PREFIX   writes OUT_PREFIX.csv and OUT_PREFIX.png (default:
+               examples/paper/results/sensitivity-phi-scan)
+
+Every value is the mean over the run's averaging window (strains 150-500; Pe 0.1: 50-200 a^2/D0)
+with two errors: the observer's blocking SE ("plateau" says whether the blocking reached one; if
+not, that SE is a lower bound) and the SE of the means of 20-strain blocks, which are longer than
+the decorrelation time (6-17 strains) and so nearly independent. The plot shows the second.
+"""
+import csv
+import math
+import os
+import re
+import sys
+
+import h5py
+import matplotlib
+import numpy as np
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.normpath(os.path.join(HERE, "..", "..", ".."))
+sys.path.insert(0, HERE)
+import generate  # noqa: E402
+import table  # noqa: E402
+
+SCAN = re.compile(r"^nobrown-(homo-)?phi([0-9.]+)(-r2|-n1000)?$")
+PECLET = re.compile(r"^brownian-pe([0-9.]+)-phi([0-9.]+)(-r2)?$")
+COLUMNS = ["run", "shape", "phi", "N", "seeds", "Pe", "window", "delta_theta_m", "se_blocking",
+           "plateau", "se_20_strain_blocks", "S_zz", "S_zz_se", "decorrelation_strains"]
+
+
+def value(h5, path):
+    d = h5["results/" + path]
+    plateau = "no plateau" not in table.text(d.attrs.get("description", ""))
+    return float(d[()]), float(d.attrs.get("stderr", math.nan)), plateau
+
+
+def row(path, name, shape, phi, pe, variant):
+    with h5py.File(path, "r") as h5:
+        window, _, _ = table.blocks(h5)
+        t, v = table.theta_series(h5)
+        edges = np.arange(t[0], t[-1] + 1e-9, table.BLOCK)
+        means = [v[(t >= a) & (t < a + table.BLOCK)].mean() for a in edges[:-1]]
+        theta, se, plateau = value(h5, "orientation/delta_theta_m")
+        szz, szz_se, _ = value(h5, "orientation/S_zz")
+        tau = float(h5["results/orientation/decorrelation_time"][()])
+    v = generate.VARIANTS[variant]
+    block_se = float(np.std(means, ddof=1) / math.sqrt(len(means))) if len(means) > 1 else math.nan
+    return {"run": name, "shape": shape, "phi": phi, "N": v.get("count", generate.N),
+            "seeds": "{}/{}".format(*v.get("seed", (1, 42))), "Pe": pe, "window": window,
+            "delta_theta_m": theta, "se_blocking": se, "plateau": plateau,
+            "se_20_strain_blocks": block_se, "S_zz": szz, "S_zz_se": szz_se,
+            "decorrelation_strains": tau}
+
+
+def collect(root):
+    rows = []
+    for f in sorted(os.listdir(root)):
+        if not f.endswith(".h5"):
+            continue
+        name = f[:-3]
+        m = SCAN.match(name)
+        if m:
+            rows.append(row(os.path.join(root, f), name, "homonuclear" if m.group(1) else "fused",
+                            float(m.group(2)), math.inf, name[len("nobrown-"):]))
+            continue
+        m = PECLET.match(name)
+        if m:
+            rows.append(row(os.path.join(root, f), name, "fused", float(m.group(2)), float(m.group(1)),
+                            name[len("brownian-"):]))
+    return rows
+
+
+def plot(rows, out):
+    fig, (left, right) = plt.subplots(1, 2, figsize=(10, 4))
+    styles = {("fused", 216): ("C0", "o", "fused c/a 1, N 216"),
+              ("fused", 1000): ("C2", "s", "fused c/a 1, N 1000"),
+              ("homonuclear", 216): ("C1", "^", "homonuclear c/a 0.2, N 216")}
+    for (shape, n), (colour, marker, label) in styles.items():
+        pts = [r for r in rows if r["shape"] == shape and r["N"] == n and math.isinf(r["Pe"])]
+        if not pts:
+            continue
+        shift = {"fused": -0.002, "homonuclear": 0.002}[shape] + (0.004 if n == 1000 else 0.0)
+        left.errorbar([r["phi"] + shift for r in pts], [r["delta_theta_m"] for r in pts],
+                      yerr=[r["se_20_strain_blocks"] for r in pts], fmt=marker, color=colour,
+                      label=label, capsize=2)
+    left.axhline(0.0, color="grey", lw=0.8)
+    left.set_xlabel(r"$\phi$")
+    left.set_ylabel(r"$\Delta\theta_m$ (kT = 0, Pe $\to\infty$)")
+    left.set_title("kT = 0, strains 150-500; > 0: away from the vorticity", fontsize=9)
+    left.legend(fontsize=8)
+    pts = sorted((r for r in rows if not math.isinf(r["Pe"])), key=lambda r: r["Pe"])
+    if pts:
+        for replica, fmt, label in [("1/42", "o-", r"fused c/a 1, $\phi$ 0.1, N 216"),
+                                    ("2/43", "o", "other seeds")]:
+            sel = [r for r in pts if r["seeds"] == replica]
+            right.errorbar([r["Pe"] for r in sel], [r["delta_theta_m"] for r in sel],
+                           yerr=[r["se_20_strain_blocks"] for r in sel], fmt=fmt, color="C0",
+                           mfc="C0" if replica == "1/42" else "none", capsize=2, label=label)
+        kt0 = [r for r in rows if r["shape"] == "fused" and r["phi"] == 0.1 and math.isinf(r["Pe"])]
+        for r in kt0:
+            right.axhline(r["delta_theta_m"], color="C0", ls=":", lw=0.8)
+        right.set_xscale("log")
+        right.axhline(0.0, color="grey", lw=0.8)
+        right.set_xlabel("Pe")
+        right.set_ylabel(r"$\Delta\theta_m$")
+        right.set_title("Brownian, fused dumbbells at phi 0.1 (dotted: kT = 0)", fontsize=9)
+        right.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(out, dpi=110)
+
+
+def main():
+    root = sys.argv[1] if len(sys.argv) > 1 else os.path.join(ROOT, "results", "sensitivity")
+    prefix = sys.argv[2] if len(sys.argv) > 2 else os.path.normpath(
+        os.path.join(ROOT, "examples", "paper", "results", "sensitivity-phi-scan"))
+    rows = collect(root)
+    if not rows:
+        sys.exit(f"phi_scan.py: no scan results (nobrown-phi*.h5, brownian-pe*-phi*.h5) in {root}")
+    rows.sort(key=lambda r: (r["shape"], r["Pe"], r["phi"], r["N"], r["seeds"]))
+    with open(prefix + ".csv", "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=COLUMNS)
+        w.writeheader()
+        for r in rows:
+            w.writerow({k: (f"{r[k]:.5g}" if isinstance(r[k], float) else r[k]) for k in COLUMNS})
+    plot(rows, prefix + ".png")
+    print(prefix + ".csv", prefix + ".png", sep="\n")
+
+
+if __name__ == "__main__":
+    main()
