@@ -198,7 +198,7 @@ BenchScene::BenchScene(const SceneSpec& spec, const std::vector<ObserverSpec>& o
   settings.output_path = "bench";
   // The benchmark sets the threads itself (OMP_NUM_THREADS, omp_set_num_threads).
   settings.threads.reason = "set by the benchmark";
-  simulation_ = std::make_unique<Simulation>(std::move(parts), std::move(settings), sink_, no_log_);
+  simulation_ = std::make_unique<Simulation>(std::move(parts), std::move(settings), sink_, log_);
 }
 
 }  // namespace fldsim::bench

@@ -13,6 +13,7 @@
 
 #include <memory>
 #include <ostream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -87,6 +88,15 @@ class BenchScene {
   const RunInfo& run_info() const { return simulation_->run_info(); }
   double dt() const { return simulation_->settings().dt; }
   const std::vector<std::string>& skipped() const { return simulation_->skipped(); }
+  // The run log's `note:` lines so far (RunNotes: a preconditioner that fell back, and when it works
+  // again); the rest of the log (set-up lines) is not part of a benchmark's output.
+  std::vector<std::string> notes() const {
+    std::vector<std::string> out;
+    std::istringstream in(log_.str());
+    for (std::string line; std::getline(in, line);)
+      if (line.rfind("note: ", 0) == 0) out.push_back(line);
+    return out;
+  }
   const std::string& start_note() const { return start_note_; }
   // Time spent in the observers' sample calls, seconds, since construction (the stress pieces
   // are computed inside the step: stresslets and the extra solve count as hydro time).
@@ -98,7 +108,7 @@ class BenchScene {
   std::shared_ptr<HydroModel> hydro_;
   std::shared_ptr<TimedHydro> timed_;
   DiscardingSink sink_;
-  std::ostream no_log_{nullptr};  // set-up lines are not part of a benchmark's output
+  std::ostringstream log_;  // set-up lines (not printed) and notes
   std::unique_ptr<Simulation> simulation_;
   std::string start_note_;
 };

@@ -159,6 +159,7 @@ int main(int argc, char** argv) {
         static_cast<long long>(scene.evaluator().stats().pairs), static_cast<long long>(rebuilds),
         peak_rss_mb(), scene.start_note().c_str());
     for (const auto& s : scene.skipped()) std::cerr << "skipped: " << s << "\n";
+    for (const auto& n : scene.notes()) std::cerr << n << "\n";
   } catch (const std::exception& e) {
     std::cerr << "fldsim_bench_step: " << e.what() << "\n";
     return 1;

@@ -15,7 +15,7 @@ struct HydroTimes {
   std::int64_t solves = 0, cg_iterations = 0;
 };
 
-class TimedHydro : public HydroModel {
+class TimedHydro : public HydroModel, public RunNotes {
  public:
   explicit TimedHydro(std::shared_ptr<HydroModel> inner) : inner_(std::move(inner)) {}
 
@@ -43,6 +43,11 @@ class TimedHydro : public HydroModel {
     times_.cg_iterations += inner_->last_solve().iterations;
   }
   SolveStats last_solve() const override { return inner_->last_solve(); }
+  // The wrapped model's run-log lines (a preconditioner that fell back), if it has any.
+  std::vector<std::string> take_notes() override {
+    RunNotes* n = run_notes_of(*inner_);
+    return n ? n->take_notes() : std::vector<std::string>{};
+  }
   Eigen::Matrix3d stresslet_sum(const System& s, const NodePairList& pairs, const double* dU) override {
     const auto t0 = Clock::now();
     const Eigen::Matrix3d S = inner_->stresslet_sum(s, pairs, dU);

@@ -174,5 +174,44 @@ TEST(Simulation, RefusesAStressObserverWhenTheHydroModelHasNoStresslets) {
   EXPECT_THROW(model.stresslet_sum(sim.system(), NodePairList{}, nullptr), Error);
 }
 
+// A component's RunNotes lines reach the run log once each, after the step in which they were
+// noted, with the time and the component (API 5.3); components without RunNotes are not asked.
+class NotingHydro : public NoStressletHydro, public RunNotes {
+ public:
+  void assemble(const System& s, const NodePairList&) override {
+    if (s.step() == 2 && !noted_) {  // during the third step
+      notes_.push_back("switched to plan B");
+      noted_ = true;
+    }
+  }
+  std::vector<std::string> take_notes() override {
+    std::vector<std::string> out;
+    out.swap(notes_);
+    return out;
+  }
+
+ private:
+  std::vector<std::string> notes_;
+  bool noted_ = false;
+};
+
+TEST(Simulation, WritesTheComponentsRunNotesToTheLog) {
+  auto b = build(experiment_file());
+  SimulationSettings settings;
+  settings.dt = 1e-3;
+  settings.total_steps = 5;
+  test::FakeSink sink;
+  std::ostringstream log;
+  SimulationParts parts = parts_without_stresslets(*b, {0});
+  parts.hydro_name = "noting";
+  parts.hydro = std::make_shared<NotingHydro>();
+  Simulation sim(std::move(parts), settings, sink, log);
+  sim.run();
+  const std::string text = log.str(), line = "note: t = 0.003 a^2/D0, hydro noting: switched to plan B\n";
+  const std::size_t at = text.find(line);
+  ASSERT_NE(at, std::string::npos) << text;
+  EXPECT_EQ(text.find("note:", at + 1), std::string::npos) << text;
+}
+
 }  // namespace
 }  // namespace fldsim

@@ -13,10 +13,11 @@ using namespace fldsim::hydro::test;
 namespace {
 
 Params defaults(const PluginInfo& info) {
-  Params p("hydro", "test");
+  Params p(info.kind, "test");
   for (const auto& spec : info.schema.specs())
     if (spec.default_value)
-      p.set(spec.name, *spec.default_value, ParamOrigin{"test", "hydro." + spec.name}, /*given=*/false);
+      p.set(spec.name, *spec.default_value, ParamOrigin{"test", info.kind + "." + spec.name},
+            /*given=*/false);
   return p;
 }
 
@@ -73,4 +74,36 @@ TEST(HydroPlugins, LammpsConventionsPresetThePairFormsAndRefuseContradictions) {
     p.set("lever", std::string("contact"), ParamOrigin{"test:4:5", "hydro.lever"});
     EXPECT_NO_THROW(hydro::read_lubrication_params(p));
   }
+}
+
+// A loaded plugin's run-log lines reach the core through the guard that wraps every plugin object
+// (PluginBoundary.hpp): the lubricated models note a preconditioner breakdown, met here as a
+// resumed run could meet it (a checkpoint whose matrix is the 4-cycle on which IC(0) breaks down,
+// in every numbering; ResistanceModelNotes checks which numberings and the exact lines), and a
+// plugin without RunNotes is asked for none. Fails if a guard does not forward take_notes().
+TEST(HydroPlugins, RunNotesPassTheGuard) {
+  const PluginRegistry registry({FLDSIM_TEST_PLUGIN_DIR});
+  for (const char* name : {"fld", "lubrication"}) {
+    SCOPED_TRACE(name);
+    const auto model = registry.create<HydroModel>("hydro", name, defaults(registry.find("hydro", name)));
+    RunNotes* notes = run_notes_of(*model);
+    ASSERT_NE(notes, nullptr);
+    const System s = four_sphere_chain();
+    model->configure(s, HydroRequest{});
+    EXPECT_TRUE(notes->take_notes().empty());
+    std::array<std::uint32_t, 4> label = {0, 1, 2, 3};
+    int noted = 0;
+    do {
+      model->restore_state(four_cycle_checkpoint(label));
+      for (const std::string& line : notes->take_notes()) {
+        ++noted;
+        EXPECT_TRUE(line.rfind("incomplete_cholesky preconditioner ", 0) == 0) << line;
+      }
+    } while (std::next_permutation(label.begin(), label.end()));
+    EXPECT_GT(noted, 0);
+  }
+  const auto force =
+      registry.create<ForceLaw>("force", "repulsion", defaults(registry.find("force", "repulsion")));
+  ASSERT_NE(run_notes_of(*force), nullptr);
+  EXPECT_TRUE(run_notes_of(*force)->take_notes().empty());
 }

@@ -3,11 +3,13 @@
 // cell list).
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <memory>
 #include <random>
 #include <vector>
 
+#include "fldsim/block_sparse.hpp"
 #include "fldsim/neighbours.hpp"
 #include "fldsim/shape.hpp"
 #include "fldsim/system.hpp"
@@ -93,6 +95,43 @@ inline void random_configuration(System& s, double min_gap, unsigned seed) {
     }
   }
   s.update_nodes();
+}
+
+// Four spheres in a row, 2.2 a apart (three lubricated pairs), in a box of 20 a.
+inline System four_sphere_chain() {
+  System s(sphere_shape(), 4, 20.0, physics(1.0, 0.0, 0.3));
+  for (std::size_t i = 0; i < 4; ++i) s.positions()[i] = Vec3(3.0 + 2.2 * double(i), 5.0, 5.0);
+  s.update_nodes();
+  return s;
+}
+
+// A ResistanceModel checkpoint (save_state's format: [-2, n, pairs, (i, j)..., diagonal blocks,
+// upper blocks (column-major), 0 numbers of the preconditioner's own state]) whose matrix is an
+// SPD 4-cycle on which IC(0) breaks down in most row orders (Kershaw's kind of example, J. Comput.
+// Phys. 26, 43 (1978); the one of BlockPCG.FallsBackToDiluWhereIncompleteCholeskyBreaksDown),
+// times the 6x6 identity, with body i of the cycle numbered label[i].
+inline std::vector<double> four_cycle_checkpoint(const std::array<std::uint32_t, 4>& label) {
+  const double M[4][4] = {{6, 0, 2, 4}, {0, 5, -2, 3}, {2, -2, 2, 0}, {4, 3, 0, 6}};  // SPD, min eig 0.40
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> upper;
+  std::vector<double> value;
+  for (std::uint32_t i = 0; i < 4; ++i)
+    for (std::uint32_t j = i + 1; j < 4; ++j)
+      if (M[i][j] != 0.0) {
+        upper.emplace_back(std::min(label[i], label[j]), std::max(label[i], label[j]));
+        value.push_back(M[i][j]);
+      }
+  std::vector<double> state = {-2.0, 4.0, double(upper.size())};
+  for (const auto& [i, j] : upper) state.insert(state.end(), {double(i), double(j)});
+  std::array<double, 4> diagonal{};
+  for (std::uint32_t i = 0; i < 4; ++i) diagonal[label[i]] = M[i][i];
+  auto block = [&](double v) {
+    const Mat6 b = v * Mat6::Identity();
+    state.insert(state.end(), b.data(), b.data() + 36);
+  };
+  for (double d : diagonal) block(d);
+  for (double v : value) block(v);
+  state.push_back(0.0);
+  return state;
 }
 
 }  // namespace fldsim::hydro::test

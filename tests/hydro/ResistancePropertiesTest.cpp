@@ -470,3 +470,52 @@ TEST(BodyResistance, ClosedFormPairForcesEqualTheGeneralProducts) {
       });
   EXPECT_GT(pairs, 100);
 }
+
+namespace fldsim::hydro::test {
+
+// The run log hears of a preconditioner that broke down (RunNotes, API 5.3): once when the model
+// falls back and once when the chosen IC(0) works again, not at every factorisation. No pair
+// geometry found in a search (rings of 4-8 spheres at gaps 1e-5-0.1 a, perturbed cubic lattices of
+// up to 1000 spheres, 9000 random dense configurations) breaks IC(0), so the breakdown comes in the
+// way a resumed run could meet it: a checkpoint whose saved matrix is the 4-cycle of
+// BlockPCG.FallsBackToDiluWhereIncompleteCholeskyBreaksDown, in every numbering of its four bodies.
+TEST(ResistanceModelNotes, SayWhenThePreconditionerFallsBackAndWhenItWorksAgain) {
+  System s = four_sphere_chain();
+  std::array<std::uint32_t, 4> label = {0, 1, 2, 3};
+  int fallbacks = 0;
+  do {
+    const std::vector<double> state = four_cycle_checkpoint(label);
+    ModelSettings st = lubrication_settings();
+    ResistanceModel m(st);
+    HydroRequest req;
+    m.configure(s, req);
+    m.restore_state(state);
+    const std::vector<std::string> notes = m.take_notes();
+    EXPECT_TRUE(m.take_notes().empty()) << "notes are handed out once";
+    if (m.active_preconditioner() == Preconditioner::IncompleteCholesky) {
+      EXPECT_TRUE(notes.empty()) << notes.front();
+      continue;
+    }
+    ++fallbacks;
+    ASSERT_EQ(notes.size(), 1u);
+    EXPECT_EQ(
+        notes[0],
+        "incomplete_cholesky preconditioner broke down (a pivot block not positive definite); CG uses " +
+            std::string(m.active_preconditioner() == Preconditioner::EisenstatDilu ? "eisenstat_dilu"
+                                                                                   : "block_jacobi") +
+            " until it works again (same tolerance, more iterations per solve)");
+    // The chain's own R (three weakly coupled pairs) factorises: one note that IC(0) is back.
+    m.assemble(s, brute_force_pairs(s, m.pair_range(s)));
+    ASSERT_EQ(m.active_preconditioner(), Preconditioner::IncompleteCholesky);
+    EXPECT_EQ(m.take_notes(), std::vector<std::string>{
+                                  "incomplete_cholesky preconditioner works again, after 1 factorisation(s) "
+                                  "that fell back"});
+    // A second breakdown is noted again; a later factorisation that also falls back is not.
+    m.restore_state(state);
+    m.restore_state(state);
+    EXPECT_EQ(m.take_notes().size(), 1u);
+  } while (std::next_permutation(label.begin(), label.end()));
+  EXPECT_GT(fallbacks, 0);
+}
+
+}  // namespace fldsim::hydro::test

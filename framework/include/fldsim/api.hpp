@@ -14,9 +14,10 @@
 // may carry state such as a preconditioner across steps and a resumed run still continues bit for
 // bit).
 // Minor: additions a plugin built against an older minor can ignore (fldsim::PairEnergy, the
-// optional pair energy of a force law, came in 2.1 as a class of its own).
+// optional pair energy of a force law, came in 2.1 as a class of its own; fldsim::RunNotes, lines
+// a component puts in the run log, in 5.3).
 #define FLDSIM_API_MAJOR 5
-#define FLDSIM_API_MINOR 2
+#define FLDSIM_API_MINOR 3
 
 #define FLDSIM_STR2(x) #x
 #define FLDSIM_STR(x) FLDSIM_STR2(x)

@@ -32,6 +32,21 @@ decltype(auto) plugin_call(const std::string& who, const char* call, Fn&& fn) {
   }
 }
 
+// A plugin object's run-log lines (RunNotes, API 5.3) through its guard, so that run_notes_of()
+// finds them on the guard; none when the object has no RunNotes (a plugin of API 5.2 or older).
+class GuardedNotes : public RunNotes {
+ public:
+  GuardedNotes(RunNotes* inner, std::string who) : notes_(inner), notes_who_(std::move(who)) {}
+  std::vector<std::string> take_notes() override {
+    if (!notes_) return {};
+    return plugin_call(notes_who_, "take_notes()", [&] { return notes_->take_notes(); });
+  }
+
+ private:
+  RunNotes* notes_;  // the inner object (kept alive by the guard), or null
+  std::string notes_who_;
+};
+
 class GuardedShape final : public Shape {
  public:
   GuardedShape(std::shared_ptr<Shape> inner, std::string who) : in_(std::move(inner)), who_(std::move(who)) {}
@@ -53,10 +68,10 @@ class GuardedShape final : public Shape {
   std::string who_;
 };
 
-class GuardedHydro final : public HydroModel {
+class GuardedHydro final : public HydroModel, public GuardedNotes {
  public:
   GuardedHydro(std::shared_ptr<HydroModel> inner, std::string who)
-      : in_(std::move(inner)), who_(std::move(who)) {}
+      : GuardedNotes(run_notes_of(*inner), who), in_(std::move(inner)), who_(std::move(who)) {}
   double pair_range(const System& s) const override {
     return plugin_call(who_, "pair_range()", [&] { return in_->pair_range(s); });
   }
@@ -95,10 +110,10 @@ class GuardedHydro final : public HydroModel {
   std::string who_;
 };
 
-class GuardedForce : public ForceLaw {
+class GuardedForce : public ForceLaw, public GuardedNotes {
  public:
   GuardedForce(std::shared_ptr<ForceLaw> inner, std::string who)
-      : in_(std::move(inner)), who_(std::move(who)) {}
+      : GuardedNotes(run_notes_of(*inner), who), in_(std::move(inner)), who_(std::move(who)) {}
   double range(const System& s) const override {
     return plugin_call(who_, "range()", [&] { return in_->range(s); });
   }
@@ -125,10 +140,10 @@ class GuardedEnergyForce final : public GuardedForce, public PairEnergy {
   const PairEnergy& energy_;  // the inner object, kept alive by in_
 };
 
-class GuardedObserver final : public Observer {
+class GuardedObserver final : public Observer, public GuardedNotes {
  public:
   GuardedObserver(std::shared_ptr<Observer> inner, std::string who)
-      : in_(std::move(inner)), who_(std::move(who)) {}
+      : GuardedNotes(run_notes_of(*inner), who), in_(std::move(inner)), who_(std::move(who)) {}
   ObserverNeeds needs() const override {
     return plugin_call(who_, "needs()", [&] { return in_->needs(); });
   }

@@ -10,6 +10,7 @@
 #endif
 
 #include "config/NumberText.hpp"
+#include "fldsim/number_text.hpp"
 #include "run/RunUnits.hpp"
 #include "run/StartConfiguration.hpp"
 
@@ -237,6 +238,22 @@ Simulation::Simulation(SimulationParts parts, SimulationSettings settings, Resul
     log_ << "Brownian stress: random finite difference, delta " << settings_.probe_delta
          << " a (two extra solves on each stress sample)\n";
   }
+  // Components that put lines in the run log (fldsim::RunNotes, API 5.3).
+  const auto listen = [this](Component& c, std::string label) {
+    if (RunNotes* n = run_notes_of(c)) notes_.push_back({std::move(label), n});
+  };
+  listen(*parts_.hydro, "hydro " + parts_.hydro_name);
+  if (parts_.probe_hydro) listen(*parts_.probe_hydro, "stress probe's hydro " + parts_.hydro_name);
+  for (auto& f : parts_.forces) listen(*f, "force " + f->plugin_name());
+  for (auto& o : parts_.observers) listen(*o, "observer " + o->plugin_name());
+}
+
+void Simulation::log_notes() {
+  for (auto& [label, source] : notes_)
+    for (const std::string& line : source->take_notes())
+      log_ << "note: t = " << number_text(system_->time() / settings_.time_scale) << " "
+           << settings_.time_unit << ", " << label << ": " << line << "\n"
+           << std::flush;
 }
 
 // capture() and apply() are the one place that lists the run state a restart needs: the
@@ -326,6 +343,7 @@ void Simulation::step() {
   if (!trial_) start_stepping();
   if (!trial_->running()) {
     steps_->step(sink_);
+    log_notes();
     return;
   }
   // Results do not depend on the thread count, so the trial times real steps.
@@ -334,6 +352,7 @@ void Simulation::step() {
 #endif
   const auto t0 = std::chrono::steady_clock::now();
   steps_->step(sink_);
+  log_notes();
   if (trial_->record(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count())) {
 #ifdef _OPENMP
     omp_set_num_threads(trial_->chosen());

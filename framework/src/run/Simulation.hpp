@@ -128,6 +128,7 @@ class Simulation {
 
  private:
   void start_stepping();  // thread trial and counters, at the first step()
+  void log_notes();       // the components' RunNotes lines since the last step, to the log
 
   SimulationParts parts_;
   SimulationSettings settings_;
@@ -146,6 +147,7 @@ class Simulation {
   std::optional<ThreadTrial> trial_;
   std::int64_t first_step_ = 0, first_iterations_ = 0, first_rebuilds_ = 0;
   bool finished_observers_ = false;
+  std::vector<std::pair<std::string, RunNotes*>> notes_;  // label for the log, the component's notes
 };
 
 }  // namespace fldsim

@@ -52,9 +52,10 @@ bool lammps_conventions(const Params& params);
 // the schema default. A given value that contradicts the preset is a configuration error.
 const std::string& convention_choice(const Params& params, const std::string& key, const std::string& preset);
 
-class ResistanceModel : public HydroModel {
+class ResistanceModel : public HydroModel, public RunNotes {
  public:
-  explicit ResistanceModel(ModelSettings settings) : settings_(settings), pcg_(settings.preconditioner) {}
+  explicit ResistanceModel(ModelSettings settings)
+      : settings_(settings), pcg_(settings.preconditioner), noted_(settings.preconditioner) {}
 
   double pair_range(const System& system) const override;
   std::vector<std::string> configure(const System& system, const HydroRequest& request) override;
@@ -69,11 +70,16 @@ class ResistanceModel : public HydroModel {
   // rebuilds the identical factor from it.
   std::vector<double> save_state() const override;
   void restore_state(const std::vector<double>& state) override;
+  // Run-log lines: the chosen preconditioner broke down and another one took over, and when the
+  // chosen one works again (with how many factorisations it missed).
+  std::vector<std::string> take_notes() override;
 
   // For tests: the assembled R_FU and R_FE:E_inf.
   const BlockSparseMatrix& resistance() const { return A_; }
   const std::vector<double>& strain_force() const { return strain_force_; }
   const BodyResistance& lubrication() const { return lub_; }
+  // The preconditioner of the last factorisation (settings' choice, or the fallback it needed).
+  Preconditioner active_preconditioner() const { return pcg_.active(); }
 
  private:
   ModelSettings settings_;
@@ -92,6 +98,11 @@ class ResistanceModel : public HydroModel {
   mutable std::vector<double> row_change_;  // reuse_factor() scratch (EisenstatDilu)
   bool has_factor_ = false;
   bool reuse_factor() const;
+  // Builds the preconditioner from factor_source_ and notes a change of the one in use.
+  void factorise();
+  Preconditioner noted_;                      // the preconditioner the last note (or the settings) named
+  std::int64_t fallback_factorisations_ = 0;  // since the chosen one last worked
+  std::vector<std::string> notes_;
   bool configured_ = false;
 };
 
