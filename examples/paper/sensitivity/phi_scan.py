@@ -12,6 +12,8 @@ Every value is the mean over the run's averaging window (strains 150-500; Pe 0.1
 with two errors: the observer's blocking SE ("plateau" says whether the blocking reached one; if
 not, that SE is a lower bound) and the SE of the means of 20-strain blocks, which are longer than
 the decorrelation time (6-17 strains) and so nearly independent. The plot shows the second.
+The runs with LAMMPS's lubricateU forms (lammps-phiX-n1000, tolerance 1e-3 a) are plotted; the
+default forms at that tolerance (phiX-n1000-t3, their like-for-like pair) are in the CSV only.
 """
 import csv
 import math
@@ -32,9 +34,9 @@ sys.path.insert(0, HERE)
 import generate  # noqa: E402
 import table  # noqa: E402
 
-SCAN = re.compile(r"^nobrown-(homo-)?phi([0-9.]+)(-r2|-n1000)?$")
+SCAN = re.compile(r"^nobrown-(homo-|lammps-)?phi([0-9.]+)(-r2|-n1000)?(-t3)?$")
 PECLET = re.compile(r"^brownian-pe([0-9.]+)-phi([0-9.]+)(-r2)?$")
-COLUMNS = ["run", "shape", "phi", "N", "seeds", "Pe", "window", "delta_theta_m", "se_blocking",
+COLUMNS = ["run", "shape", "forms", "tolerance", "phi", "N", "seeds", "Pe", "window", "delta_theta_m", "se_blocking",
            "plateau", "se_20_strain_blocks", "S_zz", "S_zz_se", "decorrelation_strains"]
 
 
@@ -55,7 +57,8 @@ def row(path, name, shape, phi, pe, variant):
         tau = float(h5["results/orientation/decorrelation_time"][()])
     v = generate.VARIANTS[variant]
     block_se = float(np.std(means, ddof=1) / math.sqrt(len(means))) if len(means) > 1 else math.nan
-    return {"run": name, "shape": shape, "phi": phi, "N": v.get("count", generate.N),
+    forms = "lammps" if "conventions: lammps" in v.get("hydro", "") else "fldsim"
+    return {"run": name, "shape": shape, "forms": forms, "tolerance": v.get("tolerance", "1.0e-3"), "phi": phi, "N": v.get("count", generate.N),
             "seeds": "{}/{}".format(*v.get("seed", (1, 42))), "Pe": pe, "window": window,
             "delta_theta_m": theta, "se_blocking": se, "plateau": plateau,
             "se_20_strain_blocks": block_se, "S_zz": szz, "S_zz_se": szz_se,
@@ -70,7 +73,7 @@ def collect(root):
         name = f[:-3]
         m = SCAN.match(name)
         if m:
-            rows.append(row(os.path.join(root, f), name, "homonuclear" if m.group(1) else "fused",
+            rows.append(row(os.path.join(root, f), name, "homonuclear" if m.group(1) == "homo-" else "fused",
                             float(m.group(2)), math.inf, name[len("nobrown-"):]))
             continue
         m = PECLET.match(name)
@@ -82,14 +85,18 @@ def collect(root):
 
 def plot(rows, out):
     fig, (left, right) = plt.subplots(1, 2, figsize=(10, 4))
-    styles = {("fused", 216): ("C0", "o", "fused c/a 1, N 216"),
-              ("fused", 1000): ("C2", "s", "fused c/a 1, N 1000"),
-              ("homonuclear", 216): ("C1", "^", "homonuclear c/a 0.2, N 216")}
-    for (shape, n), (colour, marker, label) in styles.items():
-        pts = [r for r in rows if r["shape"] == shape and r["N"] == n and math.isinf(r["Pe"])]
+    styles = {("fused", 216, "fldsim"): ("C0", "o", "fused c/a 1, N 216"),
+              ("fused", 1000, "fldsim"): ("C2", "s", "fused c/a 1, N 1000"),
+              ("fused", 1000, "lammps"): ("C3", "D", "fused, LAMMPS forms, N 1000, tol 1e-3"),
+              ("homonuclear", 216, "fldsim"): ("C1", "^", "homonuclear c/a 0.2, N 216")}
+    for (shape, n, forms), (colour, marker, label) in styles.items():
+        pts = [r for r in rows
+               if r["shape"] == shape and r["N"] == n and r["forms"] == forms and math.isinf(r["Pe"])
+               and not r["run"].endswith("-t3")]
         if not pts:
             continue
-        shift = {"fused": -0.002, "homonuclear": 0.002}[shape] + (0.004 if n == 1000 else 0.0)
+        shift = {"fused": -0.002, "homonuclear": 0.002}[shape] + (0.004 if n == 1000 else 0.0) + \
+            (0.003 if forms == "lammps" else 0.0)
         left.errorbar([r["phi"] + shift for r in pts], [r["delta_theta_m"] for r in pts],
                       yerr=[r["se_20_strain_blocks"] for r in pts], fmt=marker, color=colour,
                       label=label, capsize=2)
@@ -126,7 +133,7 @@ def main():
     rows = collect(root)
     if not rows:
         sys.exit(f"phi_scan.py: no scan results (nobrown-phi*.h5, brownian-pe*-phi*.h5) in {root}")
-    rows.sort(key=lambda r: (r["shape"], r["Pe"], r["phi"], r["N"], r["seeds"]))
+    rows.sort(key=lambda r: (r["shape"], r["forms"], r["Pe"], r["phi"], r["N"], r["seeds"]))
     with open(prefix + ".csv", "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=COLUMNS)
         w.writeheader()
