@@ -10,7 +10,6 @@
 #endif
 
 #include "config/NumberText.hpp"
-#include "fldsim/number_text.hpp"
 #include "run/RunUnits.hpp"
 #include "run/StartConfiguration.hpp"
 
@@ -251,8 +250,8 @@ Simulation::Simulation(SimulationParts parts, SimulationSettings settings, Resul
 void Simulation::log_notes() {
   for (auto& [label, source] : notes_)
     for (const std::string& line : source->take_notes())
-      log_ << "note: t = " << number_text(system_->time() / settings_.time_scale) << " "
-           << settings_.time_unit << ", " << label << ": " << line << "\n"
+      log_ << "note: t = " << log_number(system_->time() / settings_.time_scale) << " " << settings_.time_unit
+           << ", " << label << ": " << line << "\n"
            << std::flush;
 }
 

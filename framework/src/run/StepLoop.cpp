@@ -3,8 +3,9 @@
 #include <chrono>
 #include <cmath>
 #include <ostream>
-#include <sstream>
 #include <string>
+
+#include "config/NumberText.hpp"
 
 namespace fldsim {
 namespace {
@@ -13,13 +14,6 @@ StepControlSettings fixed_step(const RunInfo& info) {
   StepControlSettings c;
   c.frame = info.dt;
   return c;
-}
-
-std::string number(double x) {
-  std::ostringstream s;
-  s.precision(4);
-  s << x;
-  return s.str();
 }
 
 }  // namespace
@@ -86,12 +80,13 @@ void StepLoop::step(ResultSink& sink) {
         detail = "a velocity or position is not finite";
       } else if (a.min_gap < -guard_.max_overlap && a.min_gap < gap_ - guard_.deepening()) {
         why = Rejection::Overlap;
-        detail = "nodes overlap by " + number(-a.min_gap) +
-                 " a, more than run.max_overlap = " + number(guard_.max_overlap) + " a";
+        detail = "nodes overlap by " + log_number(-a.min_gap) +
+                 " a, more than run.max_overlap = " + log_number(guard_.max_overlap) + " a";
       } else if (control_.settings().adaptive && a.error > tolerance * control_.settings().reject_at) {
         why = Rejection::Error;
-        detail = "local error " + number(a.error) + " a above " + number(control_.settings().reject_at) +
-                 " x run.tolerance = " + number(tolerance) + " a";
+        detail = "local error " + log_number(a.error) + " a above " +
+                 log_number(control_.settings().reject_at) + " x run.tolerance = " + log_number(tolerance) +
+                 " a";
       } else {
         ok = true;
       }
@@ -115,12 +110,12 @@ void StepLoop::step(ResultSink& sink) {
       sys_.nonaffine_displacement() = nonaffine_;
       evaluator_.warm_start() = warm_start_;
       gap_known_ = false;
-      throw StepFailure("t = " + number(frame_start_.time / info_.time_scale) + " " + info_.time_unit +
+      throw StepFailure("t = " + log_number(frame_start_.time / info_.time_scale) + " " + info_.time_unit +
                         " (step " + std::to_string(sys_.step()) + "): cannot go on: a step of " +
-                        number(interval.duration() / info_.time_scale) + " " + info_.time_unit +
+                        log_number(interval.duration() / info_.time_scale) + " " + info_.time_unit +
                         " was still rejected (" + detail +
-                        ") and run.dt_min = " + number(control_.settings().dt_min / info_.time_scale) + " " +
-                        info_.time_unit + " allows no shorter one");
+                        ") and run.dt_min = " + log_number(control_.settings().dt_min / info_.time_scale) +
+                        " " + info_.time_unit + " allows no shorter one");
     }
   }
   sys_.set_time(next_time);
@@ -161,10 +156,10 @@ void StepLoop::warn_overlap(double gap, const NodePair* pair) {
   const bool first = deepest_warned_ == 0.0;
   deepest_warned_ = gap;
   if (!log_) return;
-  *log_ << "warning: t = " << number(sys_.time() / info_.time_scale) << " " << info_.time_unit
+  *log_ << "warning: t = " << log_number(sys_.time() / info_.time_scale) << " " << info_.time_unit
         << ": overlap: ";
   if (pair) *log_ << "bodies " << pair->body_i << " and " << pair->body_j << " ";
-  *log_ << "overlap by " << number(-gap) << " a"
+  *log_ << "overlap by " << log_number(-gap) << " a"
         << (first ? " (further overlaps are reported when deeper)" : "") << "\n";
 }
 
@@ -181,7 +176,7 @@ void StepLoop::restore_state(const std::vector<double>& state) {
   // undefined, or a NaN step proposal).
   for (const double x : state)
     if (!std::isfinite(x) || std::abs(x) > 0x1p62)
-      throw Error("step state in the checkpoint holds an impossible value (" + number(x) + ")");
+      throw Error("step state in the checkpoint holds an impossible value (" + log_number(x) + ")");
   if (!(state[0] > 0.0)) throw Error("step state in the checkpoint holds a step proposal <= 0");
   control_.restore(state[0]);
   overlap_frames_ = std::int64_t(state[1]);

@@ -54,8 +54,7 @@ const std::string& convention_choice(const Params& params, const std::string& ke
 
 class ResistanceModel : public HydroModel, public RunNotes {
  public:
-  explicit ResistanceModel(ModelSettings settings)
-      : settings_(settings), pcg_(settings.preconditioner), noted_(settings.preconditioner) {}
+  explicit ResistanceModel(ModelSettings settings) : settings_(settings), pcg_(settings.preconditioner) {}
 
   double pair_range(const System& system) const override;
   std::vector<std::string> configure(const System& system, const HydroRequest& request) override;
@@ -70,8 +69,8 @@ class ResistanceModel : public HydroModel, public RunNotes {
   // rebuilds the identical factor from it.
   std::vector<double> save_state() const override;
   void restore_state(const std::vector<double>& state) override;
-  // Run-log lines: the chosen preconditioner broke down and another one took over, and when the
-  // chosen one works again (with how many factorisations it missed).
+  // Run-log lines: the chosen preconditioner broke down and another one took over (the first
+  // time in full, then at the 2nd, 4th, 8th, ... breakdown with the counts so far).
   std::vector<std::string> take_notes() override;
 
   // For tests: the assembled R_FU and R_FE:E_inf.
@@ -100,8 +99,8 @@ class ResistanceModel : public HydroModel, public RunNotes {
   bool reuse_factor() const;
   // Builds the preconditioner from factor_source_ and notes a change of the one in use.
   void factorise();
-  Preconditioner noted_;                      // the preconditioner the last note (or the settings) named
-  std::int64_t fallback_factorisations_ = 0;  // since the chosen one last worked
+  bool falling_back_ = false;  // the last factorisation used a fallback
+  std::int64_t factorisations_ = 0, fallbacks_ = 0, jacobi_fallbacks_ = 0, breakdowns_ = 0;
   std::vector<std::string> notes_;
   bool configured_ = false;
 };
