@@ -34,7 +34,7 @@ sys.path.insert(0, HERE)
 import generate  # noqa: E402
 import table  # noqa: E402
 
-SCAN = re.compile(r"^nobrown-(homo-|lammps-)?phi([0-9.]+)(-r2|-n1000)?(-t3)?$")
+SCAN = re.compile(r"^nobrown-(homo-|lammps-|lammpssmooth-)?phi([0-9.]+)(-r2|-n1000)?(-t3)?$")
 PECLET = re.compile(r"^brownian-pe([0-9.]+)-phi([0-9.]+)(-r2)?$")
 COLUMNS = ["run", "shape", "forms", "tolerance", "phi", "N", "seeds", "Pe", "window", "delta_theta_m", "se_blocking",
            "plateau", "se_20_strain_blocks", "S_zz", "S_zz_se", "decorrelation_strains"]
@@ -57,7 +57,9 @@ def row(path, name, shape, phi, pe, variant):
         tau = float(h5["results/orientation/decorrelation_time"][()])
     v = generate.VARIANTS[variant]
     block_se = float(np.std(means, ddof=1) / math.sqrt(len(means))) if len(means) > 1 else math.nan
-    forms = "lammps" if "conventions: lammps" in v.get("hydro", "") else "fldsim"
+    hydro = v.get("hydro", "")
+    forms = ("lammps" if "conventions: lammps" in hydro else "fldsim") + \
+        ("+smooth" if "visibility: smooth" in hydro else "")
     return {"run": name, "shape": shape, "forms": forms, "tolerance": v.get("tolerance", "1.0e-3"), "phi": phi, "N": v.get("count", generate.N),
             "seeds": "{}/{}".format(*v.get("seed", (1, 42))), "Pe": pe, "window": window,
             "delta_theta_m": theta, "se_blocking": se, "plateau": plateau,
@@ -88,6 +90,7 @@ def plot(rows, out):
     styles = {("fused", 216, "fldsim"): ("C0", "o", "fused c/a 1, N 216"),
               ("fused", 1000, "fldsim"): ("C2", "s", "fused c/a 1, N 1000"),
               ("fused", 1000, "lammps"): ("C3", "D", "fused, LAMMPS forms, N 1000, tol 1e-3"),
+              ("fused", 1000, "lammps+smooth"): ("C4", "v", "same + smooth visibility"),
               ("homonuclear", 216, "fldsim"): ("C1", "^", "homonuclear c/a 0.2, N 216")}
     for (shape, n, forms), (colour, marker, label) in styles.items():
         pts = [r for r in rows
@@ -96,7 +99,7 @@ def plot(rows, out):
         if not pts:
             continue
         shift = {"fused": -0.002, "homonuclear": 0.002}[shape] + (0.004 if n == 1000 else 0.0) + \
-            (0.003 if forms == "lammps" else 0.0)
+            {"fldsim": 0.0, "lammps": 0.003, "lammps+smooth": 0.006}[forms]
         left.errorbar([r["phi"] + shift for r in pts], [r["delta_theta_m"] for r in pts],
                       yerr=[r["se_20_strain_blocks"] for r in pts], fmt=marker, color=colour,
                       label=label, capsize=2)
