@@ -99,9 +99,9 @@ for _phi in [0.1, 0.15, 0.2, 0.25]:
 for _phi in [0.2, 0.25]:
     VARIANTS[f"lammps-phi{_phi:g}-n1000"] = dict(LONG, phi=_phi, tolerance="1.0e-3", count=1000,
                                                  hydro="conventions: lammps")
-# Not yet run to the end (about an hour each on one core; N 1000 at phi 0.3 with LAMMPS's forms
-# advances ~12 frames/s): LAMMPS's forms at phi 0.3, and with the smooth visibility rule too (the
-# combination that came closest at phi 0.3, N 216).
+# LAMMPS's forms at phi 0.3, and with the smooth visibility rule too (the combination that came
+# closest at phi 0.3, N 216); 15 min each at ~48 frames/s on a free core (lammpssmooth-phi0.25 not
+# run yet).
 VARIANTS["lammps-phi0.3-n1000"] = dict(LONG, phi=0.3, tolerance="1.0e-3", count=1000, hydro="conventions: lammps")
 for _phi in [0.25, 0.3]:
     VARIANTS[f"lammpssmooth-phi{_phi:g}-n1000"] = dict(LONG, phi=_phi, tolerance="1.0e-3", count=1000,
