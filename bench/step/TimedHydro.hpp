@@ -17,7 +17,8 @@ struct HydroTimes {
 
 class TimedHydro : public HydroModel, public RunNotes {
  public:
-  explicit TimedHydro(std::shared_ptr<HydroModel> inner) : inner_(std::move(inner)) {}
+  explicit TimedHydro(std::shared_ptr<HydroModel> inner)
+      : inner_(std::move(inner)), notes_(run_notes_of(*inner_)) {}
 
   double pair_range(const System& s) const override { return inner_->pair_range(s); }
   bool provides_stresslets() const override { return inner_->provides_stresslets(); }
@@ -45,8 +46,7 @@ class TimedHydro : public HydroModel, public RunNotes {
   SolveStats last_solve() const override { return inner_->last_solve(); }
   // The wrapped model's run-log lines (a preconditioner that fell back), if it has any.
   std::vector<std::string> take_notes() override {
-    RunNotes* n = run_notes_of(*inner_);
-    return n ? n->take_notes() : std::vector<std::string>{};
+    return notes_ ? notes_->take_notes() : std::vector<std::string>{};
   }
   Eigen::Matrix3d stresslet_sum(const System& s, const NodePairList& pairs, const double* dU) override {
     const auto t0 = Clock::now();
@@ -64,6 +64,7 @@ class TimedHydro : public HydroModel, public RunNotes {
     return std::chrono::duration<double>(Clock::now() - t0).count();
   }
   std::shared_ptr<HydroModel> inner_;
+  RunNotes* notes_;  // inner_'s RunNotes side, or null
   HydroTimes times_;
 };
 

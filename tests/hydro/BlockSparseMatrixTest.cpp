@@ -10,6 +10,7 @@
 #include <omp.h>
 #endif
 
+#include "KershawCycle.hpp"
 #include "fldsim/block_sparse.hpp"
 #include "linalg/BlockIncompleteCholesky.hpp"
 #include "linalg/EisenstatDilu.hpp"
@@ -295,7 +296,7 @@ TEST(BlockIncompleteCholesky, IsExactWithoutFillWhateverTheNumbering) {
 // fallback a breakdown went straight to block Jacobi (294 against 30 CG iterations per step on 1000
 // spheres near a cubic lattice): the check of `active()` fails that variant.
 TEST(BlockPCG, FallsBackToDiluWhereIncompleteCholeskyBreaksDown) {
-  const double M[4][4] = {{6, 0, 2, 4}, {0, 5, -2, 3}, {2, -2, 2, 0}, {4, 3, 0, 6}};  // SPD, min eig 0.40
+  const auto& M = fldsim::hydro::test::kKershawCycle;
   std::array<std::uint32_t, 4> label = {0, 1, 2, 3};
   int fallbacks = 0;
   do {

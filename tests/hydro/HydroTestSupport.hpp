@@ -9,6 +9,7 @@
 #include <random>
 #include <vector>
 
+#include "KershawCycle.hpp"
 #include "fldsim/block_sparse.hpp"
 #include "fldsim/neighbours.hpp"
 #include "fldsim/shape.hpp"
@@ -106,12 +107,11 @@ inline System four_sphere_chain() {
 }
 
 // A ResistanceModel checkpoint (save_state's format: [-2, n, pairs, (i, j)..., diagonal blocks,
-// upper blocks (column-major), 0 numbers of the preconditioner's own state]) whose matrix is an
-// SPD 4-cycle on which IC(0) breaks down in most row orders (Kershaw's kind of example, J. Comput.
-// Phys. 26, 43 (1978); the one of BlockPCG.FallsBackToDiluWhereIncompleteCholeskyBreaksDown),
+// upper blocks (column-major), 0 numbers of the preconditioner's own state]) whose matrix is the
+// 4-cycle kKershawCycle (the matrix of BlockPCG.FallsBackToDiluWhereIncompleteCholeskyBreaksDown)
 // times the 6x6 identity, with body i of the cycle numbered label[i].
 inline std::vector<double> four_cycle_checkpoint(const std::array<std::uint32_t, 4>& label) {
-  const double M[4][4] = {{6, 0, 2, 4}, {0, 5, -2, 3}, {2, -2, 2, 0}, {4, 3, 0, 6}};  // SPD, min eig 0.40
+  const auto& M = fldsim::hydro::test::kKershawCycle;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> upper;
   std::vector<double> value;
   for (std::uint32_t i = 0; i < 4; ++i)

@@ -23,7 +23,6 @@ import sys
 
 import h5py
 import matplotlib
-import numpy as np
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -49,14 +48,11 @@ def value(h5, path):
 def row(path, name, shape, phi, pe, variant):
     with h5py.File(path, "r") as h5:
         window, _, _ = table.blocks(h5)
-        t, v = table.theta_series(h5)
-        edges = np.arange(t[0], t[-1] + 1e-9, table.BLOCK)
-        means = [v[(t >= a) & (t < a + table.BLOCK)].mean() for a in edges[:-1]]
+        _, block_se = table.block_means(*table.theta_series(h5))
         theta, se, plateau = value(h5, "orientation/delta_theta_m")
         szz, szz_se, _ = value(h5, "orientation/S_zz")
         tau = float(h5["results/orientation/decorrelation_time"][()])
     v = generate.VARIANTS[variant]
-    block_se = float(np.std(means, ddof=1) / math.sqrt(len(means))) if len(means) > 1 else math.nan
     hydro = v.get("hydro", "")
     forms = ("lammps" if "conventions: lammps" in hydro else "fldsim") + \
         ("+smooth" if "visibility: smooth" in hydro else "")

@@ -50,6 +50,15 @@ def theta_series(h5):
     return np.asarray(g["time"]), np.asarray(g["value"]) - 1.0
 
 
+def block_means(t, v):
+    """Means of the series v(t) over consecutive BLOCK-strain blocks from its first sample, and
+    their standard error (nan for fewer than two blocks)."""
+    edges = np.arange(t[0], t[-1] + 1e-9, BLOCK)
+    means = [v[(t >= a) & (t < a + BLOCK)].mean() for a in edges[:-1]]
+    se = float(np.std(means, ddof=1) / math.sqrt(len(means))) if len(means) > 1 else math.nan
+    return means, se
+
+
 def block_summary(h5, t, v, missing):
     """(window, mean +- SE of the BLOCK-strain block means, the block means) of the series t, v.
 
@@ -61,9 +70,8 @@ def block_summary(h5, t, v, missing):
     match = re.search(r"mean over (\d+) samples", text(d.attrs.get("description", "")))
     samples = int(match.group(1)) if match else len(t)
     window = f"{t[-1] - (samples - 1) * generate.SAMPLE:g}–{t[-1]:g}"
-    edges = np.arange(t[0], t[-1] + 1e-9, BLOCK)
-    means = [v[(t >= a) & (t < a + BLOCK)].mean() for a in edges[:-1]]
-    spread = f"{np.mean(means):+.3f} ± {np.std(means, ddof=1) / math.sqrt(len(means)):.3f}" if len(means) > 1 else "–"
+    means, se = block_means(t, v)
+    spread = f"{np.mean(means):+.3f} ± {se:.3f}" if len(means) > 1 else "–"
     listed = " ".join(f"{m:+.3f}" for m in means)
     if samples != len(t):
         listed += f" ({missing(t, len(t), samples)})"

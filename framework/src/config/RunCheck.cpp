@@ -85,12 +85,6 @@ std::string bytes_text(double b) {
   return o.str();
 }
 
-std::string num(double v) {
-  std::ostringstream o;
-  o << std::setprecision(4) << v;
-  return o.str();
-}
-
 double machine_memory_bytes() {
   const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGESIZE);
   return pages > 0 && page > 0 ? double(pages) * double(page) : 0.0;
@@ -318,17 +312,18 @@ RunCheckReport check_run(const Experiment& ex, const PluginRegistry& registry, c
     const double refined = std::ldexp(steps, ex.refine);
     if (!(steps <= kMaxSteps))
       problems.at(run, "duration",
-                  "run.duration / run.dt = " + num(steps) + " steps; at most " + num(kMaxSteps) +
+                  "run.duration / run.dt = " + log_number(steps) + " steps; at most " +
+                      log_number(kMaxSteps) +
                       " steps per run (a longer dt, a shorter duration, or several resumed runs)");
     else if (!(refined <= kMaxSteps))
       problems.at(run, "refine",
-                  std::to_string(ex.refine) + ": run.duration / run.dt x 2^refine = " + num(refined) +
-                      " steps; at most " + num(kMaxSteps) + " steps per run");
+                  std::to_string(ex.refine) + ": run.duration / run.dt x 2^refine = " + log_number(refined) +
+                      " steps; at most " + log_number(kMaxSteps) + " steps per run");
     else
       total_steps = std::max<std::int64_t>(1, std::llround(steps));
   }
   if (ex.checkpoint_every > 0.0 && ex.dt > 0.0 && ex.checkpoint_every < ex.dt)
-    problems.at(run, "checkpoint_every", "shorter than one step (run.dt = " + num(ex.dt) + ")");
+    problems.at(run, "checkpoint_every", "shorter than one step (run.dt = " + log_number(ex.dt) + ")");
 
   // 3. Observers: each must record something; their sample buffers must fit.
   double sample_bytes = 0.0;
@@ -344,8 +339,8 @@ RunCheckReport check_run(const Experiment& ex, const PluginRegistry& registry, c
     if (n == 0) {
       if (o.start > ex.duration)
         problems.at(o.plugin.params, "start",
-                    num(o.start) + " is after the end of the run (run.duration " + num(ex.duration) +
-                        "): the observer would record nothing");
+                    log_number(o.start) + " is after the end of the run (run.duration " +
+                        log_number(ex.duration) + "): the observer would record nothing");
       else
         problems.at(o.plugin.params, "every",
                     std::to_string(o.every) + " steps: no sample falls in the run's " +
@@ -366,23 +361,24 @@ RunCheckReport check_run(const Experiment& ex, const PluginRegistry& registry, c
     const double n_bodies = double(ex.count);
     const std::string phi_key = ex.box_edge > 0.0 ? "box_edge" : "volume_fraction";
     if (!(volume > 0.0) || !std::isfinite(volume)) {
-      problems.at_block(ex.shape, "body volume " + num(volume) + " a^3: expected a positive volume");
+      problems.at_block(ex.shape, "body volume " + log_number(volume) + " a^3: expected a positive volume");
     } else {
       edge = ex.box_edge > 0.0 ? ex.box_edge : std::cbrt(n_bodies * volume / ex.volume_fraction);
       phi = n_bodies * volume / (edge * edge * edge);
-      const std::string scene = std::to_string(ex.count) + " bodies of " + num(volume) +
-                                " a^3 in a box of edge " + num(edge) + " a: phi = " + num(phi);
+      const std::string scene = std::to_string(ex.count) + " bodies of " + log_number(volume) +
+                                " a^3 in a box of edge " + log_number(edge) + " a: phi = " + log_number(phi);
       if (!(phi < 0.74))
         problems.at(ex.system_params, phi_key, scene + "; no packing of hard bodies exceeds 0.74");
       else if (ex.init_method == "monte_carlo" && phi >= kMonteCarloPhiLimit)
         problems.at(ex.system_params, phi_key,
                     scene + "; the hard-body Monte Carlo start cannot compress beyond phi = " +
-                        num(kMonteCarloPhiLimit) + " (start from system.init.file of a denser earlier run)");
+                        log_number(kMonteCarloPhiLimit) +
+                        " (start from system.init.file of a denser earlier run)");
       // A body must not reach its own periodic image, nor a pair its own second image.
       if (2.0 * (reach + node_radius) >= edge)
         problems.at(ex.system_params, phi_key,
-                    "a " + ex.shape.name + " body spans " + num(2.0 * (reach + node_radius)) +
-                        " a, not less than the box edge " + num(edge) +
+                    "a " + ex.shape.name + " body spans " + log_number(2.0 * (reach + node_radius)) +
+                        " a, not less than the box edge " + log_number(edge) +
                         " a: it would touch its own periodic image");
     }
     const double memory = n_bodies * double(shape->nodes().size()) * kBytesPerNode + sample_bytes;
@@ -417,8 +413,8 @@ RunCheckReport check_run(const Experiment& ex, const PluginRegistry& registry, c
     }
     if (range + ex.skin >= 0.5 * edge)
       problems.at(ex.system_params, ex.box_edge > 0.0 ? "box_edge" : "count",
-                  "the pair range " + num(range) + " a + run.skin " + num(ex.skin) +
-                      " a must be less than half the box edge (" + num(0.5 * edge) +
+                  "the pair range " + log_number(range) + " a + run.skin " + log_number(ex.skin) +
+                      " a must be less than half the box edge (" + log_number(0.5 * edge) +
                       " a): more bodies, or a larger box_edge");
     // Listed positions: as `run` places them.
     if (ex.init_method == "explicit") {
@@ -535,9 +531,9 @@ RunCheckReport check_run(const Experiment& ex, const PluginRegistry& registry, c
 
   errors.throw_if_any();
   std::ostringstream s;
-  s << ex.count << " x " << ex.shape.name << ", phi = " << num(phi) << " (box edge " << num(edge)
-    << " a), hydro " << ex.hydro.name << ", " << ex.forces.size() << " force(s), " << ex.observers.size()
-    << " observer(s), " << total_steps << " steps";
+  s << ex.count << " x " << ex.shape.name << ", phi = " << log_number(phi) << " (box edge "
+    << log_number(edge) << " a), hydro " << ex.hydro.name << ", " << ex.forces.size() << " force(s), "
+    << ex.observers.size() << " observer(s), " << total_steps << " steps";
   report.summary = s.str();
   report.steps = total_steps;
   report.nodes = shape ? ex.count * std::int64_t(shape->nodes().size()) : 0;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <span>
 #include <sstream>
+#include <utility>
 
 #include "fldsim/error.hpp"
 #include "fldsim/number_text.hpp"
@@ -11,6 +12,18 @@
 namespace fldsim::hydro {
 
 namespace {
+// The `preconditioner` key's values, for reading it and for the run log.
+constexpr std::pair<Preconditioner, const char*> kPreconditionerNames[] = {
+    {Preconditioner::IncompleteCholesky, "incomplete_cholesky"},
+    {Preconditioner::EisenstatDilu, "eisenstat_dilu"},
+    {Preconditioner::BlockJacobi, "block_jacobi"}};
+
+std::string preconditioner_name(Preconditioner p) {
+  for (const auto& [kind, name] : kPreconditionerNames)
+    if (kind == p) return name;
+  return "block_jacobi";
+}
+
 // Coefficients of fldsim's R_0(phi) fits (see isotropic_factors).
 // f_t from tests/calibration/FitIsotropicResistance.cpp (N = 500, 3 configurations x 16 draws per
 // phi, Newton to |d_s - target| < 2e-4 at phi = 0.1 ... 0.5); f_r is Kumar & Higdon's (fitting it
@@ -126,10 +139,8 @@ ModelSettings read_lubrication_params(const Params& p) {
     p.fail("taper_width", "must be smaller than cutoff - 2 (the taper would reach contact)");
   s.tolerance = p.number("tolerance");
   s.max_iterations = int(p.integer("max_iterations"));
-  const std::string& preconditioner = p.text("preconditioner");
-  s.preconditioner = preconditioner == "block_jacobi"     ? Preconditioner::BlockJacobi
-                     : preconditioner == "eisenstat_dilu" ? Preconditioner::EisenstatDilu
-                                                          : Preconditioner::IncompleteCholesky;
+  for (const auto& [kind, name] : kPreconditionerNames)
+    if (p.text("preconditioner") == name) s.preconditioner = kind;
   // D-ILU's threshold is per block row (reuse_factor); 0.3 measured over five scenes (bench/README.md,
   // "Eisenstat": 0.2 refactors too often on spheres, 0.5 too seldom for dicolloids at Pe 1000).
   s.refactor_threshold = p.given("refactor_threshold") || s.preconditioner != Preconditioner::EisenstatDilu
@@ -347,20 +358,6 @@ void ResistanceModel::restore_state(const std::vector<double>& state) {
   if (!pcg_.restore_preconditioner_state(own, n)) fail("is malformed (the preconditioner's row order)");
   factorise();
 }
-
-namespace {
-const char* preconditioner_name(Preconditioner p) {
-  switch (p) {
-    case Preconditioner::IncompleteCholesky:
-      return "incomplete_cholesky";
-    case Preconditioner::EisenstatDilu:
-      return "eisenstat_dilu";
-    case Preconditioner::BlockJacobi:
-      break;
-  }
-  return "block_jacobi";
-}
-}  // namespace
 
 // BlockPCG::prepare falls back (IC(0) -> D-ILU -> block Jacobi) where a factorisation breaks
 // down. That costs CG iterations, not accuracy. A matrix at the edge of breaking IC(0) switches
