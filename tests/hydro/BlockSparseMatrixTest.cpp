@@ -12,6 +12,7 @@
 
 #include "KershawCycle.hpp"
 #include "fldsim/block_sparse.hpp"
+#include "linalg/Block6Kernels.hpp"
 #include "linalg/BlockIncompleteCholesky.hpp"
 #include "linalg/EisenstatDilu.hpp"
 
@@ -112,6 +113,42 @@ TEST(BlockSparseMatrix, MultiplyIsIndependentOfThreadCount) {
   omp_set_num_threads(threads);
   // Bitwise equal: every row is summed in the same fixed order whatever the thread count.
   EXPECT_EQ((y1 - y2).cwiseAbs().maxCoeff(), 0.0);
+}
+#endif
+
+// The four-wide (AVX2) kernels are a faster way to the same numbers: the product and IC(0)'s
+// sweeps must give bit for bit what the two-wide kernels give, on one thread and (the product's
+// gather) on two, so that results do not depend on the machine's vector width or on the thread
+// count (the multi-threaded sweeps use the two-wide kernels). A wide kernel that summed in another
+// order, or fused a multiply with an add, would change the last bits and fail this.
+#ifdef _OPENMP
+TEST(Block6Kernels, WideAndNarrowKernelsAgreeBitForBit) {
+  if (!__builtin_cpu_supports("avx2")) GTEST_SKIP() << "no AVX2: only the two-wide kernels exist here";
+  const BlockSparseMatrix A = random_spd(300, 0.02, 17);
+  const Eigen::VectorXd x = random_vector(A.size(), 19);
+  fldsim::BlockIncompleteCholesky ic;
+  ASSERT_TRUE(ic.factorize(A));
+  const int threads = omp_get_max_threads();
+  auto results = [&](bool wide, int t) {
+    fldsim::linalg::set_wide_kernels(wide);
+    EXPECT_EQ(fldsim::linalg::wide_kernels(), wide);
+    omp_set_num_threads(t);
+    Eigen::VectorXd y(A.size()), z(A.size());
+    A.multiply(x.data(), y.data());
+    ic.apply(x.data(), z.data());
+    omp_set_num_threads(threads);
+    return std::make_pair(y, z);
+  };
+  const auto narrow = results(false, 1);
+  const auto wide = results(true, 1);
+  const auto wide_two = results(true, 2);
+  fldsim::linalg::set_wide_kernels(true);
+  EXPECT_EQ((narrow.first - wide.first).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ((narrow.second - wide.second).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ((narrow.first - wide_two.first).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ((narrow.second - wide_two.second).cwiseAbs().maxCoeff(), 0.0);
+  // And they are products of A, not two equal wrong answers.
+  EXPECT_LE((A.dense() * x - wide.first).norm(), 1e-12 * (A.dense() * x).norm());
 }
 #endif
 

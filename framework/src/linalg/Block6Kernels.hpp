@@ -1,7 +1,8 @@
 // The 6x6 block products of the CG solve and of IC(0)'s factorisation and sweeps, written out for the
 // compiler's two-wide double vectors (GCC/Clang vector extensions; SSE2 on x86-64, the only
 // target measured and tested: on a target with FMA, -ffp-contract would need to be off here for the
-// thread-count invariance below to be guaranteed).
+// thread-count invariance below to be guaranteed), and a four-wide set for CPUs with AVX2 (below;
+// `target("avx2")` does not enable FMA, so nothing is contracted) that gives the same bits.
 // Eigen's fixed-size products of 6x6 blocks leave the transposed product A^T x to six scalar
 // reductions and add every column of A x into one chain of dependent additions; these kernels
 // take about 20 % less time per block (bench/README.md, "Block kernels"). Core-private.
@@ -14,6 +15,8 @@
 #include <Eigen/Core>
 #include <cstddef>
 #include <cstdint>
+
+#include "fldsim/api.hpp"
 
 namespace fldsim::linalg {
 
@@ -80,18 +83,20 @@ inline Double2 column_pair(const Scalar* A, int c, int k) {
   return Double2{double(A[6 * c + 2 * k]), double(A[6 * c + 2 * k + 1])};
 }
 
-// acc += s A x, s = +1 or -1: the columns of A in order, each scaled by x_c and added (or
-// subtracted) to the accumulator.
+// acc += s A x, s = +1 or -1: A x summed as ((c0 + c1) + (c2 + c3)) + (c4 + c5), c_k = A_:k x_k,
+// then added to (or subtracted from) the accumulator. The tree, not a running sum over the columns:
+// a sweep of IC(0) is a chain of rows, each waiting for the last, and a running sum made that chain
+// six dependent additions per block long; with the tree it is one.
 template <int Sign, class Scalar>
 inline void accumulate_product(Acc6& acc, const Scalar* A, const double* x) {
-  for (int c = 0; c < 6; ++c) {
-    const Double2 b = {x[c], x[c]};
-    for (int k = 0; k < 3; ++k) {
-      if constexpr (Sign > 0)
-        acc.v[k] += column_pair(A, c, k) * b;
-      else
-        acc.v[k] -= column_pair(A, c, k) * b;
-    }
+  for (int k = 0; k < 3; ++k) {
+    Double2 c[6];
+    for (int j = 0; j < 6; ++j) c[j] = column_pair(A, j, k) * Double2{x[j], x[j]};
+    const Double2 t = ((c[0] + c[1]) + (c[2] + c[3])) + (c[4] + c[5]);
+    if constexpr (Sign > 0)
+      acc.v[k] += t;
+    else
+      acc.v[k] -= t;
   }
 }
 
@@ -116,6 +121,113 @@ inline Acc6 transposed_product(const Scalar* A, const Acc6& x) {
 inline void subtract_transposed_product(double* C, const double* A, const double* B) {
   for (int c = 0; c < 6; ++c) add_to_memory<-1>(C + 6 * c, transposed_product(A, Acc6::load(B + 6 * c)));
 }
+
+// ---- Four-wide kernels (AVX2) ----
+// The same products with rows 0-3 of a block in one four-double vector and rows 4-5 in a pair.
+// Every element sees the operations of the two-wide kernels above, in the same order (products,
+// then the sums in the order written there; no fused multiply-add), so a result is bit for bit the
+// same whichever set computed it. The product of the documented scene's matrix takes 0.77x the time
+// (bench/README.md, "Four-wide kernels"). Only for code compiled for AVX2: the loops that use
+// them are functions marked FLDSIM_AVX2, called when wide_kernels() is true. `always_inline`: no
+// out-of-line copy is ever emitted, so none can be taken by code compiled for plain x86-64.
+// GCC warns that a 32-byte vector is passed differently without AVX; these are always inlined, so
+// none is passed at all (the warning would come at each template's instantiation, hence not pushed).
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+#define FLDSIM_AVX2 __attribute__((target("avx2")))
+#define FLDSIM_KERNEL __attribute__((always_inline)) inline
+
+typedef double Double4 __attribute__((vector_size(32)));
+
+struct Acc6w {
+  Double4 lo;
+  Double2 hi;
+  FLDSIM_KERNEL static Acc6w load(const double* p) {
+    Acc6w a;
+    __builtin_memcpy(&a.lo, p, sizeof(Double4));
+    __builtin_memcpy(&a.hi, p + 4, sizeof(Double2));
+    return a;
+  }
+  FLDSIM_KERNEL static Acc6w zero() { return Acc6w{Double4{0.0, 0.0, 0.0, 0.0}, Double2{0.0, 0.0}}; }
+  FLDSIM_KERNEL void store(double* p) const {
+    __builtin_memcpy(p, &lo, sizeof(Double4));
+    __builtin_memcpy(p + 4, &hi, sizeof(Double2));
+  }
+  FLDSIM_KERNEL Acc6w& operator+=(const Acc6w& o) {
+    lo += o.lo;
+    hi += o.hi;
+    return *this;
+  }
+  FLDSIM_KERNEL Acc6w& operator-=(const Acc6w& o) {
+    lo -= o.lo;
+    hi -= o.hi;
+    return *this;
+  }
+};
+
+// Rows 0-3 and rows 4-5 of column c of a column-major 6x6 block, as doubles.
+FLDSIM_KERNEL Double4 column_top(const double* A, int c) {
+  Double4 v;
+  __builtin_memcpy(&v, A + 6 * c, sizeof(Double4));
+  return v;
+}
+FLDSIM_KERNEL Double4 column_top(const float* A, int c) {
+  typedef float Float4 __attribute__((vector_size(16)));
+  Float4 v;
+  __builtin_memcpy(&v, A + 6 * c, sizeof(Float4));
+  return __builtin_convertvector(v, Double4);
+}
+template <class Scalar>
+FLDSIM_KERNEL Double2 column_bottom(const Scalar* A, int c) {
+  return Double2{double(A[6 * c + 4]), double(A[6 * c + 5])};
+}
+
+template <int Sign>
+FLDSIM_KERNEL void add_to_memory(double* y, const Acc6w& t) {
+  Acc6w acc = Acc6w::load(y);
+  if constexpr (Sign > 0)
+    acc += t;
+  else
+    acc -= t;
+  acc.store(y);
+}
+
+template <int Sign, class Scalar>
+FLDSIM_KERNEL void accumulate_product(Acc6w& acc, const Scalar* A, const double* x) {
+  Double4 top[6];
+  Double2 bottom[6];
+  for (int j = 0; j < 6; ++j) {
+    top[j] = column_top(A, j) * Double4{x[j], x[j], x[j], x[j]};
+    bottom[j] = column_bottom(A, j) * Double2{x[j], x[j]};
+  }
+  const Double4 t = ((top[0] + top[1]) + (top[2] + top[3])) + (top[4] + top[5]);
+  const Double2 b = ((bottom[0] + bottom[1]) + (bottom[2] + bottom[3])) + (bottom[4] + bottom[5]);
+  if constexpr (Sign > 0) {
+    acc.lo += t;
+    acc.hi += b;
+  } else {
+    acc.lo -= t;
+    acc.hi -= b;
+  }
+}
+
+// t = A^T x with the two-wide kernel's sums: t_c = ((A_0c x_0 + A_2c x_2) + A_4c x_4)
+// + ((A_1c x_1 + A_3c x_3) + A_5c x_5).
+template <class Scalar>
+FLDSIM_KERNEL Acc6w transposed_product(const Scalar* A, const Acc6w& x) {
+  double t[6];
+  for (int c = 0; c < 6; ++c) {
+    const Double4 top = column_top(A, c) * x.lo;
+    const Double2 lanes = (Double2{top[0], top[1]} + Double2{top[2], top[3]}) + column_bottom(A, c) * x.hi;
+    t[c] = lanes[0] + lanes[1];
+  }
+  return Acc6w::load(t);
+}
+
+// Whether the loops take the four-wide kernels: the CPU has AVX2, unless a test turned them off
+// (set_wide_kernels(false) compares the two sets).
+FLDSIM_VISIBLE bool wide_kernels();
+FLDSIM_VISIBLE void set_wide_kernels(bool on);
 
 // Inverse of a lower-triangular 6x6 block by forward substitution (Eigen's triangular solve with a
 // matrix right-hand side takes its general blocked path at this size, several times slower).

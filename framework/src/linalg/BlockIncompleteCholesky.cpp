@@ -212,15 +212,16 @@ void BlockIncompleteCholesky::forward_row(std::size_t i, const double* r, double
   Acc6 acc = Acc6::load(r + 6 * i);
   for (std::int64_t c = col_start_[i]; c < col_start_[i + 1]; ++c)
     acc -= linalg::transposed_product(lower_f_[c].data(), Acc6::load(z + 6 * std::size_t(by_col_row_[c])));
-  pivot_times(i, acc, z + 6 * i);
+  pivot_times<Acc6>(i, acc, z + 6 * i);
 }
 
 // y_i = (U_ii^T)^-1 acc into out (the pivot block is lower triangular; the full product keeps the
 // kernel's fixed rounding order, and its zeros cost less than a branch per column).
-void BlockIncompleteCholesky::pivot_times(std::size_t i, const linalg::Acc6& acc, double* out) const {
+template <class Acc>
+FLDSIM_KERNEL void BlockIncompleteCholesky::pivot_times(std::size_t i, const Acc& acc, double* out) const {
   double in[6];
   acc.store(in);
-  linalg::Acc6 y = linalg::Acc6::zero();
+  Acc y = Acc::zero();
   linalg::accumulate_product<1>(y, pivot_f_[i].data(), in);
   y.store(out);
 }
@@ -230,12 +231,34 @@ void BlockIncompleteCholesky::pivot_times(std::size_t i, const linalg::Acc6& acc
 // row and descending across rows, the hardware's prefetcher lost it at N = 64000, where the factor
 // comes from memory (this order: -17 % per CG iteration there, -1.6 % per step on the documented
 // N = 1000 scene; bench/README.md, "Sweep direction and prefetching").
-void BlockIncompleteCholesky::backward_row(std::size_t i, double* z) const {
-  using linalg::Acc6;
-  Acc6 acc = Acc6::load(z + 6 * i);
+template <class Acc>
+FLDSIM_KERNEL void BlockIncompleteCholesky::backward_row(std::size_t i, double* z) const {
+  Acc acc = Acc::load(z + 6 * i);
   for (std::int64_t a = row_start_[i + 1]; a-- > row_start_[i];)
     linalg::accumulate_product<-1>(acc, upper_f_[a].data(), z + 6 * std::size_t(col_[a]));
   linalg::transposed_product(pivot_f_[i].data(), acc).store(z + 6 * i);
+}
+
+// One thread. Forward by scattering each solved block into the rows below: streams U in its own
+// layout. z_i receives r_i - U_ki^T y_k for k ascending, the operations of forward_row.
+template <class Acc>
+FLDSIM_KERNEL void BlockIncompleteCholesky::sweeps_one_thread(const double* r, double* z) const {
+  const std::int64_t n = std::int64_t(pivot_f_.size());
+  double* zp = permuted_z_.data();
+  for (std::int64_t p = 0; p < n; ++p) std::copy_n(r + 6 * std::size_t(old_of_[p]), 6, zp + 6 * p);
+  for (std::int64_t i = 0; i < n; ++i) {
+    pivot_times(std::size_t(i), Acc::load(zp + 6 * i), zp + 6 * i);
+    const Acc y = Acc::load(zp + 6 * i);
+    for (std::int64_t a = row_start_[i]; a < row_start_[i + 1]; ++a)
+      linalg::add_to_memory<-1>(zp + 6 * std::size_t(col_[a]),
+                                linalg::transposed_product(upper_f_[a].data(), y));
+  }
+  for (std::int64_t i = n; i-- > 0;) backward_row<Acc>(std::size_t(i), zp);
+  for (std::int64_t p = 0; p < n; ++p) std::copy_n(zp + 6 * p, 6, z + 6 * std::size_t(old_of_[p]));
+}
+
+void BlockIncompleteCholesky::sweeps_one_thread_wide(const double* r, double* z) const {
+  sweeps_one_thread<linalg::Acc6w>(r, z);
 }
 
 // z = P^T (U^T U)^-1 P r, with P the factor's row order: r is gathered into that order, the two
@@ -245,18 +268,10 @@ void BlockIncompleteCholesky::apply(const double* r, double* z) const {
   double* rp = permuted_r_.data();
   double* zp = permuted_z_.data();
   if (omp_get_max_threads() == 1 || !gathered_) {
-    // Forward by scattering each solved block into the rows below: streams U in its own
-    // layout. z_i receives r_i - U_ki^T y_k for k ascending, the operations of forward_row.
-    for (std::int64_t p = 0; p < n; ++p) std::copy_n(r + 6 * std::size_t(old_of_[p]), 6, zp + 6 * p);
-    for (std::int64_t i = 0; i < n; ++i) {
-      pivot_times(std::size_t(i), linalg::Acc6::load(zp + 6 * i), zp + 6 * i);
-      const linalg::Acc6 y = linalg::Acc6::load(zp + 6 * i);
-      for (std::int64_t a = row_start_[i]; a < row_start_[i + 1]; ++a)
-        linalg::add_to_memory<-1>(zp + 6 * std::size_t(col_[a]),
-                                  linalg::transposed_product(upper_f_[a].data(), y));
-    }
-    for (std::int64_t i = n; i-- > 0;) backward_row(std::size_t(i), zp);
-    for (std::int64_t p = 0; p < n; ++p) std::copy_n(zp + 6 * p, 6, z + 6 * std::size_t(old_of_[p]));
+    if (linalg::wide_kernels())
+      sweeps_one_thread_wide(r, z);
+    else
+      sweeps_one_thread<linalg::Acc6>(r, z);
     return;
   }
   // Levels, without barriers between them: each thread takes its static share of every level in
@@ -301,7 +316,7 @@ void BlockIncompleteCholesky::apply(const double* r, double* z) const {
         linalg::wait_until(done[i], fwd);  // its own forward result
         for (std::int64_t a = row_start_[i]; a < row_start_[i + 1]; ++a)
           linalg::wait_until(done[col_[a]], bwd);
-        backward_row(i, zp);
+        backward_row<linalg::Acc6>(i, zp);
         done[i].store(bwd, std::memory_order_release);
       }
     }

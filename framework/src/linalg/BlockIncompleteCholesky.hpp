@@ -46,8 +46,14 @@ class FLDSIM_VISIBLE BlockIncompleteCholesky {
   bool factor_row(const BlockSparseMatrix& A, std::size_t i);
   void prefetch_factor_inputs(const BlockSparseMatrix& A, std::int64_t p) const;
   void forward_row(std::size_t i, const double* r, double* z) const;
+  template <class Acc>
   void backward_row(std::size_t i, double* z) const;
-  void pivot_times(std::size_t i, const linalg::Acc6& acc, double* out) const;
+  template <class Acc>
+  void pivot_times(std::size_t i, const Acc& acc, double* out) const;
+  // apply() on one thread, with the two-wide kernels (Acc6) or, compiled for AVX2, the four-wide ones.
+  template <class Acc>
+  void sweeps_one_thread(const double* r, double* z) const;
+  FLDSIM_AVX2 void sweeps_one_thread_wide(const double* r, double* z) const;
 
   std::uint64_t pattern_id_ = 0;
   // The factor's row order (reverse Cuthill-McKee of A's graph, CuthillMcKee.hpp): factor row p is

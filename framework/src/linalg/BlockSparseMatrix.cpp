@@ -10,6 +10,21 @@
 
 namespace fldsim {
 
+namespace linalg {
+namespace {
+std::atomic<bool>& wide_switch() {
+  static std::atomic<bool> on{__builtin_cpu_supports("avx2") != 0};
+  return on;
+}
+}  // namespace
+bool wide_kernels() {
+  return wide_switch().load(std::memory_order_relaxed);
+}
+void set_wide_kernels(bool on) {
+  wide_switch().store(on && __builtin_cpu_supports("avx2") != 0);
+}
+}  // namespace linalg
+
 void BlockSparseMatrix::set_pattern(std::size_t n,
                                     const std::vector<std::pair<std::uint32_t, std::uint32_t>>& upper) {
   using linalg::resize_grow_only;
@@ -49,45 +64,84 @@ std::int64_t BlockSparseMatrix::find(std::uint32_t i, std::uint32_t j) const {
   return std::int64_t(it - col_.begin());
 }
 
-void BlockSparseMatrix::multiply(const double* x, double* y) const {
-  using linalg::Acc6;
-  const std::int64_t n = std::int64_t(diag_.size());
-  if (omp_get_max_threads() == 1) {
-    // One thread: each stored block is read once, y_i += A_ij x_j and y_j += A_ij^T x_i. Row j
-    // receives its lower terms by increasing i before its own diagonal and upper terms: the
-    // operations, in the order, of the gather below (which reads every block twice).
-    std::fill(y, y + 6 * n, 0.0);
-    for (std::int64_t i = 0; i < n; ++i) {
-      const Acc6 xi = Acc6::load(x + 6 * i);
-      Acc6 yi = Acc6::load(y + 6 * i);
-      linalg::accumulate_product<1>(yi, diag_[i].data(), x + 6 * i);
-      for (std::int64_t k = row_start_[i]; k < row_start_[i + 1]; ++k) {
-        const std::size_t j = col_[k];
-        linalg::accumulate_product<1>(yi, values_[k].data(), x + 6 * j);
-        linalg::add_to_memory<1>(y + 6 * j, linalg::transposed_product(values_[k].data(), xi));
-      }
-      yi.store(y + 6 * i);
-    }
-    return;
-  }
-  // Each block row is owned by one thread and summed in a fixed order (lower part by increasing
-  // row index, diagonal, upper part by increasing column), so y does not depend on the thread count.
-  const std::int64_t ahead = linalg::prefetch_distance(n);
-#pragma omp parallel for schedule(static)
+namespace {
+
+// One thread: each stored block is read once, y_i += A_ij x_j and y_j += A_ij^T x_i. Row j receives
+// its lower terms by increasing i before its own diagonal and upper terms: the operations, in the
+// order, of the gather below (which reads every block twice). Acc: the kernel set (Acc6, or Acc6w
+// inside an FLDSIM_AVX2 function).
+template <class Acc>
+FLDSIM_KERNEL void multiply_scatter(const BlockSparseMatrix& A, const double* x, double* y) {
+  const std::int64_t n = std::int64_t(A.blocks());
+  const auto& row_start = A.row_start();
+  const auto& col = A.col();
+  std::fill(y, y + 6 * n, 0.0);
   for (std::int64_t i = 0; i < n; ++i) {
-    if (const std::int64_t f = i + ahead; ahead > 0 && f < n) {
-      linalg::prefetch_block(diag_[std::size_t(f)]);
-      for (std::int64_t k = col_start_[f]; k < col_start_[f + 1]; ++k)
-        linalg::prefetch_block(values_[by_col_[k]]);
-      for (std::int64_t k = row_start_[f]; k < row_start_[f + 1]; ++k) linalg::prefetch_block(values_[k]);
+    const Acc xi = Acc::load(x + 6 * i);
+    Acc yi = Acc::load(y + 6 * i);
+    linalg::accumulate_product<1>(yi, A.diagonal(std::size_t(i)).data(), x + 6 * i);
+    for (std::int64_t k = row_start[i]; k < row_start[i + 1]; ++k) {
+      const std::size_t j = col[k];
+      linalg::accumulate_product<1>(yi, A.upper(k).data(), x + 6 * j);
+      linalg::add_to_memory<1>(y + 6 * j, linalg::transposed_product(A.upper(k).data(), xi));
     }
-    Acc6 acc = Acc6::zero();
-    for (std::int64_t k = col_start_[i]; k < col_start_[i + 1]; ++k)
-      acc += linalg::transposed_product(values_[by_col_[k]].data(), Acc6::load(x + 6 * by_col_row_[k]));
-    linalg::accumulate_product<1>(acc, diag_[i].data(), x + 6 * i);
-    for (std::int64_t k = row_start_[i]; k < row_start_[i + 1]; ++k)
-      linalg::accumulate_product<1>(acc, values_[k].data(), x + 6 * std::size_t(col_[k]));
-    acc.store(y + 6 * i);
+    yi.store(y + 6 * i);
+  }
+}
+
+// Row i of y = A x as a gather: lower part by increasing row index, diagonal, upper part by
+// increasing column, so y does not depend on which thread owns the row.
+template <class Acc>
+FLDSIM_KERNEL void multiply_row(const BlockSparseMatrix& A, std::int64_t i, std::int64_t ahead,
+                                const double* x, double* y) {
+  const auto& row_start = A.row_start();
+  const auto& col_start = A.col_start();
+  const auto& by_col = A.by_col();
+  if (const std::int64_t f = i + ahead; ahead > 0 && f < std::int64_t(A.blocks())) {
+    linalg::prefetch_block(A.diagonal(std::size_t(f)));
+    for (std::int64_t k = col_start[f]; k < col_start[f + 1]; ++k) linalg::prefetch_block(A.upper(by_col[k]));
+    for (std::int64_t k = row_start[f]; k < row_start[f + 1]; ++k) linalg::prefetch_block(A.upper(k));
+  }
+  Acc acc = Acc::zero();
+  for (std::int64_t k = col_start[i]; k < col_start[i + 1]; ++k)
+    acc += linalg::transposed_product(A.upper(by_col[k]).data(), Acc::load(x + 6 * A.by_col_row()[k]));
+  linalg::accumulate_product<1>(acc, A.diagonal(std::size_t(i)).data(), x + 6 * i);
+  for (std::int64_t k = row_start[i]; k < row_start[i + 1]; ++k)
+    linalg::accumulate_product<1>(acc, A.upper(k).data(), x + 6 * std::size_t(A.col()[k]));
+  acc.store(y + 6 * i);
+}
+
+// The parallel loop is written once per kernel set: an OpenMP region takes the instruction set of
+// the function it is written in.
+void multiply_gather(const BlockSparseMatrix& A, const double* x, double* y) {
+  const std::int64_t n = std::int64_t(A.blocks()), ahead = linalg::prefetch_distance(n);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) multiply_row<linalg::Acc6>(A, i, ahead, x, y);
+}
+
+FLDSIM_AVX2 void multiply_gather_wide(const BlockSparseMatrix& A, const double* x, double* y) {
+  const std::int64_t n = std::int64_t(A.blocks()), ahead = linalg::prefetch_distance(n);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) multiply_row<linalg::Acc6w>(A, i, ahead, x, y);
+}
+
+FLDSIM_AVX2 void multiply_scatter_wide(const BlockSparseMatrix& A, const double* x, double* y) {
+  multiply_scatter<linalg::Acc6w>(A, x, y);
+}
+
+}  // namespace
+
+void BlockSparseMatrix::multiply(const double* x, double* y) const {
+  const bool wide = linalg::wide_kernels();
+  if (omp_get_max_threads() == 1) {
+    if (wide)
+      multiply_scatter_wide(*this, x, y);
+    else
+      multiply_scatter<linalg::Acc6>(*this, x, y);
+  } else if (wide) {
+    multiply_gather_wide(*this, x, y);
+  } else {
+    multiply_gather(*this, x, y);
   }
 }
 
