@@ -100,8 +100,8 @@ for _phi in [0.2, 0.25]:
     VARIANTS[f"lammps-phi{_phi:g}-n1000"] = dict(LONG, phi=_phi, tolerance="1.0e-3", count=1000,
                                                  hydro="conventions: lammps")
 # LAMMPS's forms at phi 0.3, and with the smooth visibility rule too (the combination that came
-# closest at phi 0.3, N 216); 15 min each at ~48 frames/s on a free core (lammpssmooth-phi0.25 not
-# run yet).
+# closest at phi 0.3, N 216; at phi 0.25 also the lens reading of the paper's 0.3); 15 min each at
+# ~48-55 frames/s on a free core.
 VARIANTS["lammps-phi0.3-n1000"] = dict(LONG, phi=0.3, tolerance="1.0e-3", count=1000, hydro="conventions: lammps")
 for _phi in [0.25, 0.3]:
     VARIANTS[f"lammpssmooth-phi{_phi:g}-n1000"] = dict(LONG, phi=_phi, tolerance="1.0e-3", count=1000,
