@@ -66,10 +66,10 @@ inline void prefetch_block(const Block& b) {
   for (std::size_t o = 0; o < sizeof(Block); o += 64) __builtin_prefetch(p + o);
 }
 
-// y (6 doubles in memory) +=/-= t.
-template <int Sign>
-inline void add_to_memory(double* y, const Acc6& t) {
-  Acc6 acc = Acc6::load(y);
+// y (6 doubles in memory) +=/-= t, for either kernel set's accumulator (Acc6, Acc6w below).
+template <int Sign, class Acc>
+__attribute__((always_inline)) inline void add_to_memory(double* y, const Acc& t) {
+  Acc acc = Acc::load(y);
   if constexpr (Sign > 0)
     acc += t;
   else
@@ -180,16 +180,6 @@ FLDSIM_KERNEL Double4 column_top(const float* A, int c) {
 template <class Scalar>
 FLDSIM_KERNEL Double2 column_bottom(const Scalar* A, int c) {
   return Double2{double(A[6 * c + 4]), double(A[6 * c + 5])};
-}
-
-template <int Sign>
-FLDSIM_KERNEL void add_to_memory(double* y, const Acc6w& t) {
-  Acc6w acc = Acc6w::load(y);
-  if constexpr (Sign > 0)
-    acc += t;
-  else
-    acc -= t;
-  acc.store(y);
 }
 
 template <int Sign, class Scalar>
