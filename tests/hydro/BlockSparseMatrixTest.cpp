@@ -123,7 +123,7 @@ TEST(BlockSparseMatrix, MultiplyIsIndependentOfThreadCount) {
 // order, or fused a multiply with an add, would change the last bits and fail this.
 #ifdef _OPENMP
 TEST(Block6Kernels, WideAndNarrowKernelsAgreeBitForBit) {
-  if (!__builtin_cpu_supports("avx2")) GTEST_SKIP() << "no AVX2: only the two-wide kernels exist here";
+  if (!FLDSIM_HAS_AVX2()) GTEST_SKIP() << "no AVX2: only the two-wide kernels exist here";
   const BlockSparseMatrix A = random_spd(300, 0.02, 17);
   const Eigen::VectorXd x = random_vector(A.size(), 19);
   fldsim::BlockIncompleteCholesky ic;

@@ -134,7 +134,13 @@ inline void subtract_transposed_product(double* C, const double* A, const double
 // none is passed at all (the warning would come at each template's instantiation, hence not pushed).
 #pragma GCC diagnostic ignored "-Wpsabi"
 
+#if defined(__x86_64__) || defined(__i386__)
 #define FLDSIM_AVX2 __attribute__((target("avx2")))
+#define FLDSIM_HAS_AVX2() (__builtin_cpu_supports("avx2") != 0)
+#else  // elsewhere the wide loops are plain code that is never called
+#define FLDSIM_AVX2
+#define FLDSIM_HAS_AVX2() false
+#endif
 #define FLDSIM_KERNEL __attribute__((always_inline)) inline
 
 typedef double Double4 __attribute__((vector_size(32)));

@@ -13,7 +13,7 @@ namespace fldsim {
 namespace linalg {
 namespace {
 std::atomic<bool>& wide_switch() {
-  static std::atomic<bool> on{__builtin_cpu_supports("avx2") != 0};
+  static std::atomic<bool> on{FLDSIM_HAS_AVX2()};
   return on;
 }
 }  // namespace
@@ -21,7 +21,7 @@ bool wide_kernels() {
   return wide_switch().load(std::memory_order_relaxed);
 }
 void set_wide_kernels(bool on) {
-  wide_switch().store(on && __builtin_cpu_supports("avx2") != 0);
+  wide_switch().store(on && FLDSIM_HAS_AVX2());
 }
 }  // namespace linalg
 
