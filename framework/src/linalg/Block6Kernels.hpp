@@ -126,8 +126,8 @@ inline void subtract_transposed_product(double* C, const double* A, const double
 // The same products with rows 0-3 of a block in one four-double vector and rows 4-5 in a pair.
 // Every element sees the operations of the two-wide kernels above, in the same order (products,
 // then the sums in the order written there; no fused multiply-add), so a result is bit for bit the
-// same whichever set computed it. The product of the documented scene's matrix takes 0.77x the time
-// (bench/README.md, "Four-wide kernels"). Only for code compiled for AVX2: the loops that use
+// same whichever set computed it. A CG product takes 0.65-0.77x the time (BM_BlockSparseMatVec;
+// bench/README.md, "Four-wide kernels"). Only for code compiled for AVX2: the loops that use
 // them are functions marked FLDSIM_AVX2, called when wide_kernels() is true. `always_inline`: no
 // out-of-line copy is ever emitted, so none can be taken by code compiled for plain x86-64.
 // GCC warns that a 32-byte vector is passed differently without AVX; these are always inlined, so
