@@ -42,6 +42,7 @@ Variants (one change each against the current defaults):
                0.1 ... 0.3, two seeds (-r2: Monte Carlo seed 2, noise seed 43), N = 1000 for the
                fused ones at 0.1-0.25; phi_scan.py summarises them
   peP-phi0.1   Brownian fused dumbbells at phi 0.1 and Pe P = 0.1 ... 1000 (-r2: other seeds)
+  peP-phi0.5   Brownian fused dumbbells at phi 0.5 and Pe P = 1 ... 1000, strains 0-60 (a first look)
 """
 import os
 
@@ -116,6 +117,12 @@ for _pe in [1, 10, 100, 1000]:
     VARIANTS[f"pe{_pe:g}-phi0.1"] = dict(LONG, phi=0.1, pe=_pe)
 VARIANTS["pe1000-phi0.1-r2"] = dict(LONG, phi=0.1, pe=1000, seed=(2, 43))
 VARIANTS["pe0.1-phi0.1"] = {"phi": 0.1, "pe": 0.1, "dt": 1e-4, "duration": 200.0, "start": 50.0}
+# The paper's other fused-dumbbell statement (its Fig. 8f at phi 0.5): delta_theta_m rises up to
+# Pe 1, then falls, turns negative and settles near zero. Brownian, N 216 (box 20.4 a), the step
+# measured for fused dumbbells at phi 0.5 (4e-4 strain, examples/paper/sweep-measured-steps.yaml),
+# strains 0-60 averaged over 10-60: a first look, about 10 min per point on one thread.
+for _pe in [1, 10, 100, 1000]:
+    VARIANTS[f"pe{_pe:g}-phi0.5"] = {"phi": 0.5, "pe": _pe, "dt": 4e-4, "duration": 60.0, "start": 10.0}
 VARIANTS["long"] = dict(LONG)
 for _name in ["lammps", "lens", "lammpslens", "oldforms", "notaper", "lammpslens-smoothvis",
               "lammpslens-smoothvis-replica"]:

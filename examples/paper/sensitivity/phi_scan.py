@@ -81,6 +81,13 @@ def collect(root):
     return rows
 
 
+def pe_error(r):
+    """The error bar of a Pe point: the SE of 20-strain block means over a long window (100 strains or
+    more), else the observer's blocking SE (the phi 0.5 first look averages 50 strains)."""
+    first, last = (float(x) for x in r["window"].split("–"))
+    return r["se_20_strain_blocks"] if last - first >= 100 else r["se_blocking"]
+
+
 def plot(rows, out):
     fig, (left, right) = plt.subplots(1, 2, figsize=(10, 4))
     styles = {("fused", 216, "fldsim"): ("C0", "o", "fused c/a 1, N 216"),
@@ -106,12 +113,14 @@ def plot(rows, out):
     left.legend(fontsize=8)
     pts = sorted((r for r in rows if not math.isinf(r["Pe"])), key=lambda r: r["Pe"])
     if pts:
-        for replica, fmt, label in [("1/42", "o-", r"fused c/a 1, $\phi$ 0.1, N 216"),
-                                    ("2/43", "o", "other seeds")]:
-            sel = [r for r in pts if r["seeds"] == replica]
-            right.errorbar([r["Pe"] for r in sel], [r["delta_theta_m"] for r in sel],
-                           yerr=[r["se_20_strain_blocks"] for r in sel], fmt=fmt, color="C0",
-                           mfc="C0" if replica == "1/42" else "none", capsize=2, label=label)
+        for phi, colour in [(0.1, "C0"), (0.5, "C5")]:
+            for replica, fmt, label in [("1/42", "o-", rf"fused c/a 1, $\phi$ {phi:g}, N 216"),
+                                        ("2/43", "o", "other seeds")]:
+                sel = [r for r in pts if r["seeds"] == replica and r["phi"] == phi]
+                if sel:
+                    right.errorbar([r["Pe"] for r in sel], [r["delta_theta_m"] for r in sel],
+                                   yerr=[pe_error(r) for r in sel], fmt=fmt, color=colour,
+                                   mfc=colour if replica == "1/42" else "none", capsize=2, label=label)
         kt0 = [r for r in rows if r["shape"] == "fused" and r["phi"] == 0.1 and math.isinf(r["Pe"])]
         for r in kt0:
             right.axhline(r["delta_theta_m"], color="C0", ls=":", lw=0.8)
@@ -119,7 +128,7 @@ def plot(rows, out):
         right.axhline(0.0, color="grey", lw=0.8)
         right.set_xlabel("Pe")
         right.set_ylabel(r"$\Delta\theta_m$")
-        right.set_title("Brownian, fused dumbbells at phi 0.1 (dotted: kT = 0)", fontsize=9)
+        right.set_title("Brownian, fused dumbbells (dotted: phi 0.1 at kT = 0)", fontsize=9)
         right.legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(out, dpi=110)
