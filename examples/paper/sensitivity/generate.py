@@ -123,6 +123,11 @@ VARIANTS["pe0.1-phi0.1"] = {"phi": 0.1, "pe": 0.1, "dt": 1e-4, "duration": 200.0
 # strains 0-60 averaged over 10-60: a first look, about 10 min per point on one thread.
 for _pe in [1, 10, 100, 1000]:
     VARIANTS[f"pe{_pe:g}-phi0.5"] = {"phi": 0.5, "pe": _pe, "dt": 4e-4, "duration": 60.0, "start": 10.0}
+# ... and at the paper's N 1000 (box 34.1 a) at both ends, strains 0-40 averaged over 10-40 (about
+# 25 min each).
+for _pe in [1, 1000]:
+    VARIANTS[f"pe{_pe:g}-phi0.5-n1000"] = {"phi": 0.5, "pe": _pe, "dt": 4e-4, "duration": 40.0, "start": 10.0,
+                                           "count": 1000}
 VARIANTS["long"] = dict(LONG)
 for _name in ["lammps", "lens", "lammpslens", "oldforms", "notaper", "lammpslens-smoothvis",
               "lammpslens-smoothvis-replica"]:

@@ -34,7 +34,7 @@ import generate  # noqa: E402
 import table  # noqa: E402
 
 SCAN = re.compile(r"^nobrown-(homo-|lammps-|lammpssmooth-)?phi([0-9.]+)(-r2|-n1000)?(-t3)?$")
-PECLET = re.compile(r"^brownian-pe([0-9.]+)-phi([0-9.]+)(-r2)?$")
+PECLET = re.compile(r"^brownian-pe([0-9.]+)-phi([0-9.]+)(-r2|-n1000)?$")
 COLUMNS = ["run", "shape", "forms", "tolerance", "phi", "N", "seeds", "Pe", "window", "delta_theta_m", "se_blocking",
            "plateau", "se_20_strain_blocks", "S_zz", "S_zz_se", "decorrelation_strains"]
 
@@ -116,11 +116,16 @@ def plot(rows, out):
         for phi, colour in [(0.1, "C0"), (0.5, "C5")]:
             for replica, fmt, label in [("1/42", "o-", rf"fused c/a 1, $\phi$ {phi:g}, N 216"),
                                         ("2/43", "o", "other seeds")]:
-                sel = [r for r in pts if r["seeds"] == replica and r["phi"] == phi]
+                sel = [r for r in pts if r["seeds"] == replica and r["phi"] == phi and r["N"] == 216]
                 if sel:
                     right.errorbar([r["Pe"] for r in sel], [r["delta_theta_m"] for r in sel],
                                    yerr=[pe_error(r) for r in sel], fmt=fmt, color=colour,
                                    mfc=colour if replica == "1/42" else "none", capsize=2, label=label)
+        big = [r for r in pts if r["N"] == 1000]
+        if big:
+            right.errorbar([r["Pe"] * 1.15 for r in big], [r["delta_theta_m"] for r in big],
+                           yerr=[pe_error(r) for r in big], fmt="s", color="C5", mfc="none", capsize=2,
+                           label=r"$\phi$ 0.5, N 1000 (strains 10-40)")
         kt0 = [r for r in rows if r["shape"] == "fused" and r["phi"] == 0.1 and math.isinf(r["Pe"])]
         for r in kt0:
             right.axhline(r["delta_theta_m"], color="C0", ls=":", lw=0.8)
