@@ -95,8 +95,10 @@ template <class Acc>
 FLDSIM_KERNEL void multiply_row(const BlockSparseMatrix& A, std::int64_t i, std::int64_t ahead,
                                 const double* x, double* y) {
   const auto& row_start = A.row_start();
+  const auto& col = A.col();
   const auto& col_start = A.col_start();
   const auto& by_col = A.by_col();
+  const auto& by_col_row = A.by_col_row();
   if (const std::int64_t f = i + ahead; ahead > 0 && f < std::int64_t(A.blocks())) {
     linalg::prefetch_block(A.diagonal(std::size_t(f)));
     for (std::int64_t k = col_start[f]; k < col_start[f + 1]; ++k) linalg::prefetch_block(A.upper(by_col[k]));
@@ -104,10 +106,10 @@ FLDSIM_KERNEL void multiply_row(const BlockSparseMatrix& A, std::int64_t i, std:
   }
   Acc acc = Acc::zero();
   for (std::int64_t k = col_start[i]; k < col_start[i + 1]; ++k)
-    acc += linalg::transposed_product(A.upper(by_col[k]).data(), Acc::load(x + 6 * A.by_col_row()[k]));
+    acc += linalg::transposed_product(A.upper(by_col[k]).data(), Acc::load(x + 6 * by_col_row[k]));
   linalg::accumulate_product<1>(acc, A.diagonal(std::size_t(i)).data(), x + 6 * i);
   for (std::int64_t k = row_start[i]; k < row_start[i + 1]; ++k)
-    linalg::accumulate_product<1>(acc, A.upper(k).data(), x + 6 * std::size_t(A.col()[k]));
+    linalg::accumulate_product<1>(acc, A.upper(k).data(), x + 6 * std::size_t(col[k]));
   acc.store(y + 6 * i);
 }
 
