@@ -116,11 +116,12 @@ TEST(BlockSparseMatrix, MultiplyIsIndependentOfThreadCount) {
 }
 #endif
 
-// The four-wide (AVX2) kernels are a faster way to the same numbers: the product and IC(0)'s
-// sweeps must give bit for bit what the two-wide kernels give, on one thread and (the product's
-// gather) on two, so that results do not depend on the machine's vector width or on the thread
-// count (the multi-threaded sweeps use the two-wide kernels). A wide kernel that summed in another
-// order, or fused a multiply with an add, would change the last bits and fail this.
+// The four-wide (AVX2) kernels are a faster way to the same numbers: the product must give bit for
+// bit what the two-wide kernels give, and IC(0)'s single-precision sweeps compiled for AVX2 what
+// the same loop compiled for plain x86-64 gives, on one thread and (the product's gather) on two,
+// so that results do not depend on the machine's vector width or on the thread count (the
+// multi-threaded sweeps are the plain build's). A kernel that summed in another order, or fused a
+// multiply with an add, in one build only would change the last bits and fail this.
 #ifdef _OPENMP
 TEST(Block6Kernels, WideAndNarrowKernelsAgreeBitForBit) {
   if (!FLDSIM_HAS_AVX2()) GTEST_SKIP() << "no AVX2: only the two-wide kernels exist here";
@@ -263,7 +264,7 @@ TEST(BlockIncompleteCholesky, IsExactWithoutFill) {
   BlockPCG pcg(fldsim::Preconditioner::IncompleteCholesky);
   pcg.prepare(A);
   ASSERT_EQ(pcg.active(), fldsim::Preconditioner::IncompleteCholesky);
-  // The sweeps use the factor rounded to single precision, so one iteration leaves a relative
+  // The sweeps compute in single precision (factor and arithmetic), so one iteration leaves a relative
   // residual of order eps_f cond(A) ~ 6e-8 x 3 (diagonal 30, off-diagonal blocks ~ N(0, 1)), and
   // the second removes the rounding (its residual is of the order of the first's squared).
   Eigen::VectorXd x = Eigen::VectorXd::Zero(A.size());

@@ -1,4 +1,4 @@
-// The 6x6 block products of the CG solve and of IC(0)'s factorisation and sweeps, written out for the
+// The 6x6 block products of the CG solve, of IC(0)'s factorisation and of D-ILU, written out for the
 // compiler's two-wide double vectors (GCC/Clang vector extensions; SSE2 on x86-64, the only
 // target measured and tested: on a target with FMA, -ffp-contract would need to be off here for the
 // thread-count invariance below to be guaranteed), and a four-wide set for CPUs with AVX2 (below;
@@ -77,18 +77,17 @@ __attribute__((always_inline)) inline void add_to_memory(double* y, const Acc& t
   acc.store(y);
 }
 
-// Column c, rows 2k and 2k+1 of a column-major 6x6 block of doubles or floats, as doubles.
-template <class Scalar>
-inline Double2 column_pair(const Scalar* A, int c, int k) {
-  return Double2{double(A[6 * c + 2 * k]), double(A[6 * c + 2 * k + 1])};
+// Column c, rows 2k and 2k+1 of a column-major 6x6 block.
+inline Double2 column_pair(const double* A, int c, int k) {
+  return Double2{A[6 * c + 2 * k], A[6 * c + 2 * k + 1]};
 }
 
 // acc += s A x, s = +1 or -1: A x summed as ((c0 + c1) + (c2 + c3)) + (c4 + c5), c_k = A_:k x_k,
 // then added to (or subtracted from) the accumulator. The tree, not a running sum over the columns:
-// a sweep of IC(0) is a chain of rows, each waiting for the last, and a running sum made that chain
+// a triangular sweep is a chain of rows, each waiting for the last, and a running sum made that chain
 // six dependent additions per block long; with the tree it is one.
-template <int Sign, class Scalar>
-inline void accumulate_product(Acc6& acc, const Scalar* A, const double* x) {
+template <int Sign>
+inline void accumulate_product(Acc6& acc, const double* A, const double* x) {
   for (int k = 0; k < 3; ++k) {
     Double2 c[6];
     for (int j = 0; j < 6; ++j) c[j] = column_pair(A, j, k) * Double2{x[j], x[j]};
@@ -102,8 +101,7 @@ inline void accumulate_product(Acc6& acc, const Scalar* A, const double* x) {
 
 // t = A^T x: for each column c, (A_0:2,c x_0:2 + A_2:4,c x_2:4) + A_4:6,c x_4:6 in two lanes,
 // then the lanes added.
-template <class Scalar>
-inline Acc6 transposed_product(const Scalar* A, const Acc6& x) {
+inline Acc6 transposed_product(const double* A, const Acc6& x) {
   Double2 lanes[6];
   for (int c = 0; c < 6; ++c)
     lanes[c] =
@@ -177,19 +175,12 @@ FLDSIM_KERNEL Double4 column_top(const double* A, int c) {
   __builtin_memcpy(&v, A + 6 * c, sizeof(Double4));
   return v;
 }
-FLDSIM_KERNEL Double4 column_top(const float* A, int c) {
-  typedef float Float4 __attribute__((vector_size(16)));
-  Float4 v;
-  __builtin_memcpy(&v, A + 6 * c, sizeof(Float4));
-  return __builtin_convertvector(v, Double4);
-}
-template <class Scalar>
-FLDSIM_KERNEL Double2 column_bottom(const Scalar* A, int c) {
-  return Double2{double(A[6 * c + 4]), double(A[6 * c + 5])};
+FLDSIM_KERNEL Double2 column_bottom(const double* A, int c) {
+  return Double2{A[6 * c + 4], A[6 * c + 5]};
 }
 
-template <int Sign, class Scalar>
-FLDSIM_KERNEL void accumulate_product(Acc6w& acc, const Scalar* A, const double* x) {
+template <int Sign>
+FLDSIM_KERNEL void accumulate_product(Acc6w& acc, const double* A, const double* x) {
   Double4 top[6];
   Double2 bottom[6];
   for (int j = 0; j < 6; ++j) {
@@ -209,8 +200,7 @@ FLDSIM_KERNEL void accumulate_product(Acc6w& acc, const Scalar* A, const double*
 
 // t = A^T x with the two-wide kernel's sums: t_c = ((A_0c x_0 + A_2c x_2) + A_4c x_4)
 // + ((A_1c x_1 + A_3c x_3) + A_5c x_5).
-template <class Scalar>
-FLDSIM_KERNEL Acc6w transposed_product(const Scalar* A, const Acc6w& x) {
+FLDSIM_KERNEL Acc6w transposed_product(const double* A, const Acc6w& x) {
   double t[6];
   for (int c = 0; c < 6; ++c) {
     const Double4 top = column_top(A, c) * x.lo;
@@ -218,6 +208,88 @@ FLDSIM_KERNEL Acc6w transposed_product(const Scalar* A, const Acc6w& x) {
     t[c] = lanes[0] + lanes[1];
   }
   return Acc6w::load(t);
+}
+
+// ---- Single-precision kernels for IC(0)'s sweeps ----
+// The preconditioner only has to be a fixed symmetric positive definite operator close to R^-1: CG's
+// accuracy is set by its double-precision residual. IC(0)'s factor is already stored in single
+// precision; these kernels also do the sweeps' arithmetic in it, a block row vector of 6 floats in
+// one eight-float vector (lanes 6-7 are don't-care), so a block product is six multiplies and five
+// adds of whole vectors with no conversions (the double kernels above convert every column and
+// take two vectors per column). Lane-wise IEEE operations round the same at any vector width, so
+// these give the same bits compiled for AVX2 (one 32-byte register) or plain x86-64 (two 16-byte
+// registers): the caller compiles the same loop both ways (FLDSIM_AVX2) and results do not depend
+// on the CPU.
+//
+// A block is read as columns of eight floats from A + 6 c, two past the column: the storage must
+// hold two readable, finite floats after its last block (a zero pad block). Block row vectors in
+// memory are read and written as exactly six floats (no over-read: a multi-threaded sweep's
+// neighbouring rows belong to other threads).
+typedef float Float8 __attribute__((vector_size(32)));
+typedef float Float4 __attribute__((vector_size(16)));
+typedef float Float2 __attribute__((vector_size(8)));
+
+struct Vec6f {
+  Float8 v;
+  FLDSIM_KERNEL static Vec6f load(const float* p) {
+    Float4 lo;
+    Float2 hi;
+    __builtin_memcpy(&lo, p, sizeof(Float4));
+    __builtin_memcpy(&hi, p + 4, sizeof(Float2));
+    const Float4 hi4 = __builtin_shufflevector(hi, hi, 0, 1, 0, 1);
+    return Vec6f{__builtin_shufflevector(lo, hi4, 0, 1, 2, 3, 4, 5, 6, 7)};
+  }
+  FLDSIM_KERNEL void store(float* p) const {
+    const Float4 lo = __builtin_shufflevector(v, v, 0, 1, 2, 3);
+    const Float2 hi = __builtin_shufflevector(v, v, 4, 5);
+    __builtin_memcpy(p, &lo, sizeof(Float4));
+    __builtin_memcpy(p + 4, &hi, sizeof(Float2));
+  }
+  FLDSIM_KERNEL Vec6f& operator-=(const Vec6f& o) {
+    v -= o.v;
+    return *this;
+  }
+};
+
+// Column c of a column-major 6x6 float block in lanes 0-5 (lanes 6-7: the next two floats).
+FLDSIM_KERNEL Float8 block_column(const float* A, int c) {
+  Float8 v;
+  __builtin_memcpy(&v, A + 6 * c, sizeof(Float8));
+  return v;
+}
+
+// acc +=/-= A x (x: 6 floats in memory), A x summed as ((c0 + c1) + (c2 + c3)) + (c4 + c5).
+template <int Sign>
+FLDSIM_KERNEL void accumulate_product(Vec6f& acc, const float* A, const float* x) {
+  Float8 c[6];
+  for (int j = 0; j < 6; ++j) c[j] = block_column(A, j) * x[j];
+  const Float8 t = ((c[0] + c[1]) + (c[2] + c[3])) + (c[4] + c[5]);
+  if constexpr (Sign > 0)
+    acc.v += t;
+  else
+    acc.v -= t;
+}
+
+// Pairwise sums within each 128-bit half, as x86's haddps: [a0+a1, a2+a3, b0+b1, b2+b3 | a4+a5,
+// a6+a7, b4+b5, b6+b7].
+FLDSIM_KERNEL Float8 pair_sums(Float8 a, Float8 b) {
+  const Float8 even = __builtin_shufflevector(a, b, 0, 2, 8, 10, 4, 6, 12, 14);
+  const Float8 odd = __builtin_shufflevector(a, b, 1, 3, 9, 11, 5, 7, 13, 15);
+  return even + odd;
+}
+
+// t = A^T y: t_c = (A_01,c y_01 + A_23,c y_23) + (A_45,c y_45 + 0), each pair summed first. y's
+// lanes 6-7 are zeroed, so the two floats read past each column contribute exact zeros.
+FLDSIM_KERNEL Vec6f transposed_product(const float* A, const Vec6f& y) {
+  const Float8 zero = {};
+  const Float8 y6 = __builtin_shufflevector(y.v, zero, 0, 1, 2, 3, 4, 5, 8, 8);
+  Float8 p[6];
+  for (int c = 0; c < 6; ++c) p[c] = block_column(A, c) * y6;
+  const Float8 g = pair_sums(pair_sums(p[0], p[1]), pair_sums(p[2], p[3]));  // columns 0-3
+  const Float8 h = pair_sums(pair_sums(p[4], p[5]), zero);                   // columns 4-5
+  const Float8 first = __builtin_shufflevector(g, h, 0, 1, 2, 3, 8, 9, 8, 9);
+  const Float8 second = __builtin_shufflevector(g, h, 4, 5, 6, 7, 12, 13, 12, 13);
+  return Vec6f{first + second};
 }
 
 // Whether the loops take the four-wide kernels: the CPU has AVX2, unless a test turned them off

@@ -177,20 +177,26 @@ bool BlockIncompleteCholesky::factorize(const BlockSparseMatrix& A) {
   gathered_ = false;
   if (!ok) return false;
   const bool gather = omp_get_max_threads() > 1;
-  pivot_f_.resize(std::size_t(n));
-  linalg::resize_grow_only(upper_f_, upper_.size());
-  if (gather) linalg::resize_grow_only(lower_f_, upper_.size());
+  const std::int64_t blocks = std::int64_t(upper_.size());
+  linalg::resize_grow_only(pivot_f_, std::size_t(n) + 1);
+  linalg::resize_grow_only(upper_f_, std::size_t(blocks) + 1);
+  pivot_f_[std::size_t(n)].setZero();
+  upper_f_[std::size_t(blocks)].setZero();
+  if (gather) {
+    linalg::resize_grow_only(lower_f_, std::size_t(blocks) + 1);
+    lower_f_[std::size_t(blocks)].setZero();
+  }
 #pragma omp parallel
   {
 #pragma omp for schedule(static) nowait
     for (std::int64_t i = 0; i < n; ++i) pivot_f_[i] = inv_lower_[i].cast<float>();
 #pragma omp for schedule(static)
-    for (std::int64_t a = 0; a < std::int64_t(upper_.size()); ++a) upper_f_[a] = upper_[a].cast<float>();
+    for (std::int64_t a = 0; a < blocks; ++a) upper_f_[a] = upper_[a].cast<float>();
     // The blocks U_ki in the transposed index's order, so that the level-scheduled forward
     // sweep reads each row's blocks contiguously.
     if (gather) {
 #pragma omp for schedule(static)
-      for (std::int64_t c = 0; c < std::int64_t(upper_.size()); ++c) lower_f_[c] = upper_f_[by_col_[c]];
+      for (std::int64_t c = 0; c < blocks; ++c) lower_f_[c] = upper_f_[by_col_[c]];
     }
   }
   gathered_ = gather;
@@ -207,21 +213,21 @@ void BlockIncompleteCholesky::prefetch_factor_inputs(const BlockSparseMatrix& A,
 }
 
 // U^T y = r: y_i = (U_ii^T)^-1 (r_i - sum_{k < i} U_ki^T y_k), into z.
-void BlockIncompleteCholesky::forward_row(std::size_t i, const double* r, double* z) const {
-  using linalg::Acc6;
-  Acc6 acc = Acc6::load(r + 6 * i);
+FLDSIM_KERNEL void BlockIncompleteCholesky::forward_row(std::size_t i, const float* r, float* z) const {
+  using linalg::Vec6f;
+  Vec6f acc = Vec6f::load(r + 6 * i);
   for (std::int64_t c = col_start_[i]; c < col_start_[i + 1]; ++c)
-    acc -= linalg::transposed_product(lower_f_[c].data(), Acc6::load(z + 6 * std::size_t(by_col_row_[c])));
-  pivot_times<Acc6>(i, acc, z + 6 * i);
+    acc -= linalg::transposed_product(lower_f_[c].data(), Vec6f::load(z + 6 * std::size_t(by_col_row_[c])));
+  pivot_times(i, acc, z + 6 * i);
 }
 
 // y_i = (U_ii^T)^-1 acc into out (the pivot block is lower triangular; the full product keeps the
 // kernel's fixed rounding order, and its zeros cost less than a branch per column).
-template <class Acc>
-FLDSIM_KERNEL void BlockIncompleteCholesky::pivot_times(std::size_t i, const Acc& acc, double* out) const {
-  double in[6];
+FLDSIM_KERNEL void BlockIncompleteCholesky::pivot_times(std::size_t i, const linalg::Vec6f& acc,
+                                                        float* out) const {
+  float in[6];
   acc.store(in);
-  Acc y = Acc::zero();
+  linalg::Vec6f y{};
   linalg::accumulate_product<1>(y, pivot_f_[i].data(), in);
   y.store(out);
 }
@@ -231,9 +237,8 @@ FLDSIM_KERNEL void BlockIncompleteCholesky::pivot_times(std::size_t i, const Acc
 // row and descending across rows, the hardware's prefetcher lost it at N = 64000, where the factor
 // comes from memory (this order: -17 % per CG iteration there, -1.6 % per step on the documented
 // N = 1000 scene; bench/README.md, "Sweep direction and prefetching").
-template <class Acc>
-FLDSIM_KERNEL void BlockIncompleteCholesky::backward_row(std::size_t i, double* z) const {
-  Acc acc = Acc::load(z + 6 * i);
+FLDSIM_KERNEL void BlockIncompleteCholesky::backward_row(std::size_t i, float* z) const {
+  linalg::Vec6f acc = linalg::Vec6f::load(z + 6 * i);
   for (std::int64_t a = row_start_[i + 1]; a-- > row_start_[i];)
     linalg::accumulate_product<-1>(acc, upper_f_[a].data(), z + 6 * std::size_t(col_[a]));
   linalg::transposed_product(pivot_f_[i].data(), acc).store(z + 6 * i);
@@ -241,37 +246,46 @@ FLDSIM_KERNEL void BlockIncompleteCholesky::backward_row(std::size_t i, double* 
 
 // One thread. Forward by scattering each solved block into the rows below: streams U in its own
 // layout. z_i receives r_i - U_ki^T y_k for k ascending, the operations of forward_row.
-template <class Acc>
 FLDSIM_KERNEL void BlockIncompleteCholesky::sweeps_one_thread(const double* r, double* z) const {
-  const std::int64_t n = std::int64_t(pivot_f_.size());
-  double* zp = permuted_z_.data();
-  for (std::int64_t p = 0; p < n; ++p) std::copy_n(r + 6 * std::size_t(old_of_[p]), 6, zp + 6 * p);
+  using linalg::Vec6f;
+  const std::int64_t n = std::int64_t(inv_lower_.size());
+  float* zp = permuted_z_.data();
+  for (std::int64_t p = 0; p < n; ++p)
+    for (int k = 0; k < 6; ++k) zp[6 * p + k] = float(r[6 * std::size_t(old_of_[p]) + k]);
   for (std::int64_t i = 0; i < n; ++i) {
-    pivot_times(std::size_t(i), Acc::load(zp + 6 * i), zp + 6 * i);
-    const Acc y = Acc::load(zp + 6 * i);
-    for (std::int64_t a = row_start_[i]; a < row_start_[i + 1]; ++a)
-      linalg::add_to_memory<-1>(zp + 6 * std::size_t(col_[a]),
-                                linalg::transposed_product(upper_f_[a].data(), y));
+    pivot_times(std::size_t(i), Vec6f::load(zp + 6 * i), zp + 6 * i);
+    const Vec6f y = Vec6f::load(zp + 6 * i);
+    for (std::int64_t a = row_start_[i]; a < row_start_[i + 1]; ++a) {
+      float* zc = zp + 6 * std::size_t(col_[a]);
+      Vec6f t = Vec6f::load(zc);
+      t -= linalg::transposed_product(upper_f_[a].data(), y);
+      t.store(zc);
+    }
   }
-  for (std::int64_t i = n; i-- > 0;) backward_row<Acc>(std::size_t(i), zp);
-  for (std::int64_t p = 0; p < n; ++p) std::copy_n(zp + 6 * p, 6, z + 6 * std::size_t(old_of_[p]));
+  for (std::int64_t i = n; i-- > 0;) backward_row(std::size_t(i), zp);
+  for (std::int64_t p = 0; p < n; ++p)
+    for (int k = 0; k < 6; ++k) z[6 * std::size_t(old_of_[p]) + k] = double(zp[6 * p + k]);
+}
+
+void BlockIncompleteCholesky::sweeps_one_thread_narrow(const double* r, double* z) const {
+  sweeps_one_thread(r, z);
 }
 
 void BlockIncompleteCholesky::sweeps_one_thread_wide(const double* r, double* z) const {
-  sweeps_one_thread<linalg::Acc6w>(r, z);
+  sweeps_one_thread(r, z);
 }
 
 // z = P^T (U^T U)^-1 P r, with P the factor's row order: r is gathered into that order, the two
 // sweeps run there, and the result is scattered back (pure copies: the same for any thread count).
 void BlockIncompleteCholesky::apply(const double* r, double* z) const {
-  const std::int64_t n = std::int64_t(pivot_f_.size());
-  double* rp = permuted_r_.data();
-  double* zp = permuted_z_.data();
+  const std::int64_t n = std::int64_t(inv_lower_.size());
+  float* rp = permuted_r_.data();
+  float* zp = permuted_z_.data();
   if (omp_get_max_threads() == 1 || !gathered_) {
     if (linalg::wide_kernels())
       sweeps_one_thread_wide(r, z);
     else
-      sweeps_one_thread<linalg::Acc6>(r, z);
+      sweeps_one_thread_narrow(r, z);
     return;
   }
   // Levels, without barriers between them: each thread takes its static share of every level in
@@ -286,7 +300,8 @@ void BlockIncompleteCholesky::apply(const double* r, double* z) const {
 #pragma omp parallel
   {
 #pragma omp for schedule(static)
-    for (std::int64_t p = 0; p < n; ++p) std::copy_n(r + 6 * std::size_t(old_of_[p]), 6, rp + 6 * p);
+    for (std::int64_t p = 0; p < n; ++p)
+      for (int k = 0; k < 6; ++k) rp[6 * p + k] = float(r[6 * std::size_t(old_of_[p]) + k]);
     for (std::int64_t l = 0; l < forward; ++l) {
 #pragma omp for schedule(static) nowait
       for (std::int64_t s = forward_.level_start[l]; s < forward_.level_start[l + 1]; ++s) {
@@ -316,13 +331,14 @@ void BlockIncompleteCholesky::apply(const double* r, double* z) const {
         linalg::wait_until(done[i], fwd);  // its own forward result
         for (std::int64_t a = row_start_[i]; a < row_start_[i + 1]; ++a)
           linalg::wait_until(done[col_[a]], bwd);
-        backward_row<linalg::Acc6>(i, zp);
+        backward_row(i, zp);
         done[i].store(bwd, std::memory_order_release);
       }
     }
 #pragma omp barrier
 #pragma omp for schedule(static)
-    for (std::int64_t p = 0; p < n; ++p) std::copy_n(zp + 6 * p, 6, z + 6 * std::size_t(old_of_[p]));
+    for (std::int64_t p = 0; p < n; ++p)
+      for (int k = 0; k < 6; ++k) z[6 * std::size_t(old_of_[p]) + k] = double(zp[6 * p + k]);
   }
 }
 

@@ -45,14 +45,12 @@ class FLDSIM_VISIBLE BlockIncompleteCholesky {
   void analyse(const BlockSparseMatrix& A, bool reorder);
   bool factor_row(const BlockSparseMatrix& A, std::size_t i);
   void prefetch_factor_inputs(const BlockSparseMatrix& A, std::int64_t p) const;
-  void forward_row(std::size_t i, const double* r, double* z) const;
-  template <class Acc>
-  void backward_row(std::size_t i, double* z) const;
-  template <class Acc>
-  void pivot_times(std::size_t i, const Acc& acc, double* out) const;
-  // apply() on one thread, with the two-wide kernels (Acc6) or, compiled for AVX2, the four-wide ones.
-  template <class Acc>
+  void forward_row(std::size_t i, const float* r, float* z) const;
+  void backward_row(std::size_t i, float* z) const;
+  void pivot_times(std::size_t i, const linalg::Vec6f& acc, float* out) const;
+  // apply() on one thread: the same loop compiled for plain x86-64 and for AVX2 (same bits).
   void sweeps_one_thread(const double* r, double* z) const;
+  void sweeps_one_thread_narrow(const double* r, double* z) const;
   FLDSIM_AVX2 void sweeps_one_thread_wide(const double* r, double* z) const;
 
   std::uint64_t pattern_id_ = 0;
@@ -69,15 +67,16 @@ class FLDSIM_VISIBLE BlockIncompleteCholesky {
   // source_[a] = 2 b + t: the factor's block a is A's upper block b, transposed if t = 1.
   std::vector<std::int64_t> row_start_, col_start_, by_col_, source_;
   std::vector<std::uint32_t> col_, by_col_row_;
-  // apply()'s r and z in the factor's order.
-  mutable std::vector<double> permuted_r_, permuted_z_;
+  // apply()'s r and z in the factor's order, in single precision (the sweeps' arithmetic).
+  mutable std::vector<float> permuted_r_, permuted_z_;
   Levels forward_, backward_;
   // The factorisation runs in double: inv_lower_ = (U_ii^T)^-1 (lower triangular) and upper_ =
   // U_ij (i < j, laid out as A's upper blocks).
   std::vector<Mat6> inv_lower_, upper_;
-  // The sweeps read single-precision copies: they are memory-bound, and a rounded factor is still
-  // an exact U^T U of a slightly different U, so the preconditioner stays symmetric positive
-  // definite and CG's accuracy (set by the double-precision residual) is unchanged.
+  // The sweeps read single-precision copies and compute in single precision (Block6Kernels.hpp,
+  // "Single-precision kernels"): the preconditioner need only be a fixed operator close to R^-1,
+  // and CG's accuracy is set by its double-precision residual. Each copy ends in a zero pad block
+  // (the kernels read two floats past a block).
   using Mat6f = Eigen::Matrix<float, 6, 6>;
   std::vector<Mat6f> pivot_f_, upper_f_;
   std::vector<Mat6f> lower_f_;  // upper_f_ in the transposed index's order (by_col); threads > 1
