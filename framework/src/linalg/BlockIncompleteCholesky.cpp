@@ -275,6 +275,22 @@ void BlockIncompleteCholesky::sweeps_one_thread_wide(const double* r, double* z)
   sweeps_one_thread(r, z);
 }
 
+void BlockIncompleteCholesky::forward_row_narrow(std::size_t i, const float* r, float* z) const {
+  forward_row(i, r, z);
+}
+
+void BlockIncompleteCholesky::forward_row_wide(std::size_t i, const float* r, float* z) const {
+  forward_row(i, r, z);
+}
+
+void BlockIncompleteCholesky::backward_row_narrow(std::size_t i, float* z) const {
+  backward_row(i, z);
+}
+
+void BlockIncompleteCholesky::backward_row_wide(std::size_t i, float* z) const {
+  backward_row(i, z);
+}
+
 // z = P^T (U^T U)^-1 P r, with P the factor's row order: r is gathered into that order, the two
 // sweeps run there, and the result is scattered back (pure copies: the same for any thread count).
 void BlockIncompleteCholesky::apply(const double* r, double* z) const {
@@ -297,6 +313,7 @@ void BlockIncompleteCholesky::apply(const double* r, double* z) const {
   const std::uint64_t fwd = flags_.epochs(2), bwd = fwd + 1;
   const std::int64_t forward = std::int64_t(forward_.levels()), backward = std::int64_t(backward_.levels());
   const std::int64_t ahead = linalg::prefetch_distance(n);
+  const bool wide = linalg::wide_kernels();
 #pragma omp parallel
   {
 #pragma omp for schedule(static)
@@ -314,7 +331,10 @@ void BlockIncompleteCholesky::apply(const double* r, double* z) const {
         }
         for (std::int64_t c = col_start_[i]; c < col_start_[i + 1]; ++c)
           linalg::wait_until(done[by_col_row_[c]], fwd);
-        forward_row(i, rp, zp);
+        if (wide)
+          forward_row_wide(i, rp, zp);
+        else
+          forward_row_narrow(i, rp, zp);
         done[i].store(fwd, std::memory_order_release);
       }
     }
@@ -331,7 +351,10 @@ void BlockIncompleteCholesky::apply(const double* r, double* z) const {
         linalg::wait_until(done[i], fwd);  // its own forward result
         for (std::int64_t a = row_start_[i]; a < row_start_[i + 1]; ++a)
           linalg::wait_until(done[col_[a]], bwd);
-        backward_row(i, zp);
+        if (wide)
+          backward_row_wide(i, zp);
+        else
+          backward_row_narrow(i, zp);
         done[i].store(bwd, std::memory_order_release);
       }
     }

@@ -47,6 +47,13 @@ class FLDSIM_VISIBLE BlockIncompleteCholesky {
   void prefetch_factor_inputs(const BlockSparseMatrix& A, std::int64_t p) const;
   void forward_row(std::size_t i, const float* r, float* z) const;
   void backward_row(std::size_t i, float* z) const;
+  // One row of the multi-threaded sweeps, out of line, compiled for plain x86-64 or for AVX2 (an
+  // OpenMP region takes the instruction set of the function it is written in, so the row, not the
+  // region, is what the two builds share; same bits).
+  void forward_row_narrow(std::size_t i, const float* r, float* z) const;
+  FLDSIM_AVX2 void forward_row_wide(std::size_t i, const float* r, float* z) const;
+  void backward_row_narrow(std::size_t i, float* z) const;
+  FLDSIM_AVX2 void backward_row_wide(std::size_t i, float* z) const;
   void pivot_times(std::size_t i, const linalg::Vec6f& acc, float* out) const;
   // apply() on one thread: the same loop compiled for plain x86-64 and for AVX2 (same bits).
   void sweeps_one_thread(const double* r, double* z) const;
