@@ -99,10 +99,10 @@ void describe_lubrication_params(ParamSchema& s) {
            "notes it: the first time, then with counts at the 2nd, 4th, 8th, ... time), eisenstat_dilu "
            "(block D-ILU on the pair pattern applied with "
            "Eisenstat's trick: no product with R inside an "
-           "iteration, so an iteration costs about 0.7 of IC(0)'s, but more iterations where R moves "
-           "fast: measured 7-9 % faster per step on dicolloids at Pe <= 10, 3-4 % slower at Pe 1000 and on "
-           "LAMMPS's documented sphere scene, one thread; "
-           "bench/README.md \"Eisenstat\") or "
+           "iteration, but double-precision sweeps over R's own blocks and more iterations where R "
+           "moves fast: 3-19 % slower per step than IC(0), whose sweeps compute in single precision, "
+           "in every scene measured (dicolloids at Pe <= 10 and LAMMPS's documented sphere scene, one "
+           "thread; bench/README.md \"Single-precision IC(0) sweeps\")) or "
            "block_jacobi (more iterations); the sweeps of the first two run parallel by dependency levels");
 }
 
