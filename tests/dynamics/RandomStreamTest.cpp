@@ -1,16 +1,19 @@
-// The counter-based normals (fldsim/random.hpp, RandomStream::normal2, Marsaglia's polar method):
+// The counter-based normals (fldsim/random.hpp, RandomStream::normal2, the ziggurat method):
 //  - a pair is a pure function of (seed, purpose, step, stage, object, index), and normals()
 //    fills from the same pairs;
 //  - 2^20 normals (2^19 pairs over many pair-like objects and indices) have the standard normal
 //    distribution: mean, variance, fourth moment (3), the correlation of a pair's two values, the
-//    fraction beyond |z| = 3 (2 (1 - Phi(3)) = 0.0026998), each within 3.3 standard errors, and
-//    a chi-square over 50 equiprobable bins of Phi below the 0.1 % quantile of chi-square with 49
-//    degrees of freedom (85.35, Wilson-Hilferty). Six comparisons at 0.1 % each: family-wise false
-//    alarms below 1 %. The seeds are fixed, so the test is deterministic; the tolerances say how
-//    unlikely a pass of a wrong sampler of this size would be.
+//    fractions beyond |z| = 3 (2 (1 - Phi(3)) = 0.0026998) and beyond |z| = 3.5 (4.653e-4, inside
+//    the ziggurat's tail, which starts at 3.4426), each within 3.3 standard errors, and a
+//    chi-square over 50 equiprobable bins of Phi below the 0.1 % quantile of chi-square with 49
+//    degrees of freedom (85.35, Wilson-Hilferty). Seven comparisons at 0.1 % each: family-wise
+//    false alarms below 1 %. The seeds are fixed, so the test is deterministic; the tolerances say
+//    how unlikely a pass of a wrong sampler of this size would be.
 //  - The same check applied to broken samplers must fail, so the check can fail: a polar method
-//    that keeps the points outside the unit disc (pulled onto its rim instead of redrawn), and a
-//    Box-Muller with one uniform for both the radius and the angle.
+//    that keeps the points outside the unit disc (pulled onto its rim instead of redrawn), a
+//    Box-Muller with one uniform for both the radius and the angle, and a ziggurat (tables built
+//    here, independently of random.hpp's) that accepts its wedges untested, or that puts its tail
+//    at r.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -36,7 +39,7 @@ struct NormalCheck {
 NormalCheck check_standard_normal(const PairSampler& pair) {
   constexpr int kObjects = 4096, kIndices = 128, kBins = 50;
   const double n = 2.0 * kObjects * kIndices;
-  double sum = 0, sum2 = 0, sum4 = 0, cross = 0, beyond3 = 0;
+  double sum = 0, sum2 = 0, sum4 = 0, cross = 0, beyond3 = 0, beyond35 = 0;
   std::vector<double> bins(kBins, 0.0);
   for (std::uint64_t o = 0; o < kObjects; ++o) {
     for (std::uint32_t i = 0; i < kIndices; ++i) {
@@ -47,6 +50,7 @@ NormalCheck check_standard_normal(const PairSampler& pair) {
         sum2 += z * z;
         sum4 += z * z * z * z;
         beyond3 += std::abs(z) > 3.0 ? 1.0 : 0.0;
+        beyond35 += std::abs(z) > 3.5 ? 1.0 : 0.0;
         const double phi = 0.5 * std::erfc(-z / std::sqrt(2.0));
         bins[std::size_t(std::min(kBins - 1, int(phi * kBins)))] += 1.0;
       }
@@ -65,6 +69,8 @@ NormalCheck check_standard_normal(const PairSampler& pair) {
   expect_within("pair correlation", cross / pairs, 0.0, 1.0 / std::sqrt(pairs));
   const double p3 = std::erfc(3.0 / std::sqrt(2.0));  // 2 (1 - Phi(3))
   expect_within("P(|z| > 3)", beyond3 / n, p3, std::sqrt(p3 * (1.0 - p3) / n));
+  const double p35 = std::erfc(3.5 / std::sqrt(2.0));
+  expect_within("P(|z| > 3.5)", beyond35 / n, p35, std::sqrt(p35 * (1.0 - p35) / n));
   double chi2 = 0.0;
   const double expected = n / kBins;
   for (const double b : bins) chi2 += (b - expected) * (b - expected) / expected;
@@ -119,6 +125,73 @@ TEST(RandomStream, TheNormalityCheckFailsABrokenBoxMuller) {
     return std::array<double, 2>{r * std::cos(t), r * std::sin(t)};
   });
   EXPECT_GT(c.failures, 0) << c.report;
+}
+
+// A ziggurat of 128 layers (Marsaglia & Tsang 2000) with its own tables, one attempt per block
+// (position from word 0, layer from word 1, wedge height from word 1's upper bits), optionally
+// broken: wedge points accepted without their test, or tail points put at +-r.
+std::array<double, 2> test_ziggurat(const RandomStream& s, std::uint64_t object, std::uint32_t index,
+                                    bool wedge_test, bool tail) {
+  static const auto tables = [] {
+    constexpr double r = 3.442619855899, v = 9.91256303526217e-3;
+    std::array<double, 129> x{};
+    x[1] = r;
+    for (int i = 1; i < 128; ++i) {
+      const double y = v / x[i] + std::exp(-0.5 * x[i] * x[i]);
+      x[i + 1] = y < 1.0 ? std::sqrt(-2.0 * std::log(y)) : 0.0;
+    }
+    x[0] = v / std::exp(-0.5 * r * r);  // the base strip's width
+    x[128] = 0.0;
+    return x;
+  }();
+  const double r = tables[1];
+  auto f = [](double x) { return std::exp(-0.5 * x * x); };
+  std::array<double, 2> out{};
+  int have = 0;
+  for (std::uint32_t k = 0; have < 2; ++k) {
+    const auto b = s.bits(object, index + (k << 20));
+    const int i = int(b[1] & 127u);
+    const double u = RandomStream::to_signed_unit(b[0]), x = u * tables[std::size_t(i)];
+    const double inner = i == 0 ? r : tables[std::size_t(i) + 1];
+    if (std::abs(x) < inner) {
+      out[std::size_t(have++)] = x;
+    } else if (i == 0) {
+      if (!tail) {
+        out[std::size_t(have++)] = u > 0 ? r : -r;
+        continue;
+      }
+      for (std::uint32_t t = 1;; ++t) {
+        const auto w = s.bits(object ^ 0x5A5A5A5A5A5A5A5Aull, index + (k << 20) + t);
+        const double e = -std::log(RandomStream::to_unit(w[0], w[1])) / r;
+        if (-2.0 * std::log(RandomStream::to_unit(w[2], w[3])) > e * e) {
+          out[std::size_t(have++)] = u > 0 ? r + e : -(r + e);
+          break;
+        }
+      }
+    } else {
+      const double h =
+          f(tables[std::size_t(i)]) + (double(b[1] >> 7) + 0.5) / 33554432.0 *
+                                          (f(tables[std::size_t(i) + 1]) - f(tables[std::size_t(i)]));
+      if (!wedge_test || h < f(x)) out[std::size_t(have++)] = x;
+    }
+  }
+  return out;
+}
+
+TEST(RandomStream, TheNormalityCheckPassesTheTestZigguratAndFailsItsBrokenVariants) {
+  const RandomStream s(2026, RandomPurpose::PairNoise, 4242, 0);
+  const NormalCheck good = check_standard_normal(
+      [&](std::uint64_t o, std::uint32_t i) { return test_ziggurat(s, o, i, true, true); });
+  std::printf("reference ziggurat: %s\n", good.report.c_str());
+  EXPECT_EQ(good.failures, 0) << good.report;
+  const NormalCheck no_wedge = check_standard_normal(
+      [&](std::uint64_t o, std::uint32_t i) { return test_ziggurat(s, o, i, false, true); });
+  std::printf("wedges untested: %s\n", no_wedge.report.c_str());
+  EXPECT_GT(no_wedge.failures, 0) << no_wedge.report;
+  const NormalCheck no_tail = check_standard_normal(
+      [&](std::uint64_t o, std::uint32_t i) { return test_ziggurat(s, o, i, true, false); });
+  std::printf("tail at r: %s\n", no_tail.report.c_str());
+  EXPECT_GT(no_tail.failures, 0) << no_tail.report;
 }
 
 }  // namespace

@@ -23,6 +23,9 @@ class FLDSIM_VISIBLE BlockSparseMatrix {
   std::size_t size() const { return 6 * diag_.size(); }
 
   void set_zero();
+  // *this = other, reusing this matrix's storage (grown with headroom, never shrunk), so that a
+  // model keeping a copy of R at every assembly does not allocate in the time step (API 5.4).
+  void copy_from(const BlockSparseMatrix& other);
   Mat6& diagonal(std::size_t i) { return diag_[i]; }
   const Mat6& diagonal(std::size_t i) const { return diag_[i]; }
   // Index of the stored upper block (i, j), i < j; -1 if not in the pattern.

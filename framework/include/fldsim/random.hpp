@@ -88,25 +88,26 @@ class RandomStream {
     return (double(std::int32_t(w)) + 0.5) * (1.0 / 2147483648.0);
   }
 
-  // Two independent standard normals for (object, index), by Marsaglia's polar method (Marsaglia
-  // & Bray, SIAM Review 6, 260 (1964)): a point (u, v) uniform in the unit disc gives
-  // (u, v) sqrt(-2 ln s / s), s = u^2 + v^2, with one log and no sin/cos (about half the cost of
-  // Box-Muller, bench/README.md). Each Philox block holds two candidate points (32 bits per
-  // coordinate: |z| up to 9.4, beyond any tail a run can sample); if both fall outside the disc
-  // (probability (1 - pi/4)^2 = 4.6 %), further blocks are keyed by index + k 2^20, which no
-  // index of normals() reaches (n <= 2^16), so the pair stays a pure function of its key.
+  // Two independent standard normals for (object, index), by the ziggurat method (Marsaglia &
+  // Tsang, J. Stat. Softw. 5(8) (2000); 128 layers of equal area under exp(-x^2/2)): an attempt
+  // picks a layer from one 32-bit word and a signed position in it from another, and accepts at
+  // once where the position lies under the next layer up (98.8 % of attempts) — a multiply and a
+  // compare, no log, square root or division (the polar method before it: one log, one square
+  // root and one division per pair; bench/README.md, "Ziggurat normals"). Otherwise the wedge
+  // test (one exp) or, in the base layer beyond r = 3.4426, Marsaglia's exact tail (Technometrics
+  // 6, 101 (1964)). Layer and position come from different words (the single-word original
+  // correlates them: Doornik, "An improved ziggurat method", 2005). Words are taken in order from
+  // the Philox blocks (object, index + k 2^20), k = 0, 1, ...: the first block (two attempts)
+  // nearly always suffices, and no index of normals() reaches 2^20 (n <= 2^16), so the pair stays
+  // a pure function of its key.
   std::array<double, 2> normal2(std::uint64_t object, std::uint32_t index) const {
-    for (std::uint32_t retry = 0;; ++retry) {
-      const auto b = bits(object, index + (retry << 20));
-      for (int p = 0; p < 4; p += 2) {
-        const double u = to_signed_unit(b[std::size_t(p)]), v = to_signed_unit(b[std::size_t(p) + 1]);
-        const double s = u * u + v * v;
-        if (s < 1.0) {
-          const double f = std::sqrt(-2.0 * std::log(s) / s);
-          return {u * f, v * f};
-        }
-      }
-    }
+    const Philox4x32::Counter b = bits(object, index);
+    const Ziggurat& t = ziggurat();
+    const int i0 = int(b[1] & 127u), i1 = int(b[3] & 127u);
+    const double u0 = to_signed_unit(b[0]), u1 = to_signed_unit(b[2]);
+    // Both attempts of the first block under their next layer: the usual case, in line.
+    if (std::abs(u0) < t.inner[i0] && std::abs(u1) < t.inner[i1]) return {u0 * t.width[i0], u1 * t.width[i1]};
+    return normal2_from_words(object, index);
   }
 
   // Fill n standard normals for one object (n <= 2^16).
@@ -119,6 +120,99 @@ class RandomStream {
   }
 
  private:
+  // The words of the blocks (object, index + k 2^20), k = 0, 1, ..., in order.
+  struct WordCursor {
+    const RandomStream& stream;
+    std::uint64_t object;
+    std::uint32_t index;
+    std::uint32_t block = 0;
+    int used = 4;
+    Philox4x32::Counter words{};
+    std::uint32_t next() {
+      if (used == 4) {
+        words = stream.bits(object, index + (block++ << 20));
+        used = 0;
+      }
+      return words[std::size_t(used++)];
+    }
+  };
+
+  // Layer i of 128 under f(x) = exp(-x^2/2), x >= 0, each of area v: layer 0 is the base strip
+  // [0, r] x [0, f(r)] with the tail beyond r, drawn as a rectangle of width v / f(r); layer i >= 1
+  // spans heights f(x_i)..f(x_{i+1}) over [0, x_i], with x_1 = r, x_{i+1} = f^-1(v / x_i + f(x_i)),
+  // x_128 = 0 (r and v are Marsaglia & Tsang's, so that the 128 layers close at the top).
+  struct Ziggurat {
+    static constexpr double r = 3.442619855899, v = 9.91256303526217e-3;
+    double width[128];   // of the layer's rectangle
+    double inner[128];   // |position| below this fraction of the width is under the curve
+    double height[129];  // f(x_i), i = 1..128 (height[0] unused)
+    Ziggurat() {
+      double x[129];
+      x[1] = r;
+      for (int i = 1; i < 128; ++i) {
+        const double y = v / x[i] + std::exp(-0.5 * x[i] * x[i]);
+        x[i + 1] = y < 1.0 ? std::sqrt(-2.0 * std::log(y)) : 0.0;
+      }
+      x[128] = 0.0;
+      width[0] = v / std::exp(-0.5 * r * r);
+      inner[0] = r / width[0];
+      for (int i = 1; i < 128; ++i) {
+        width[i] = x[i];
+        inner[i] = x[i + 1] / x[i];
+      }
+      height[0] = 0.0;
+      for (int i = 1; i <= 128; ++i) height[i] = std::exp(-0.5 * x[i] * x[i]);
+    }
+  };
+  static const Ziggurat& ziggurat() {
+    static const Ziggurat table;
+    return table;
+  }
+
+  // normal2() from its words in order, every case: the same outcome as its in-line path where that
+  // applies (it replays the same first block).
+  __attribute__((noinline)) std::array<double, 2> normal2_from_words(std::uint64_t object,
+                                                                     std::uint32_t index) const {
+    WordCursor words{*this, object, index};
+    std::array<double, 2> out{};
+    for (int have = 0; have < 2;) {
+      const std::uint32_t position = words.next(), layer_word = words.next();
+      if (ziggurat_attempt(position, layer_word, words, out[std::size_t(have)])) ++have;
+    }
+    return out;
+  }
+
+  // One attempt: true and z set if accepted.
+  static bool ziggurat_attempt(std::uint32_t position, std::uint32_t layer_word, WordCursor& words,
+                               double& z) {
+    const Ziggurat& t = ziggurat();
+    const int i = int(layer_word & 127u);
+    const double u = to_signed_unit(position);
+    const double x = u * t.width[i];
+    if (std::abs(u) < t.inner[i]) {
+      z = x;
+      return true;
+    }
+    if (i == 0) {  // beyond r: the tail, r + e with density ~ exp(-r e - e^2/2)
+      for (;;) {
+        const std::uint32_t a = words.next(), b = words.next(), c = words.next(), d = words.next();
+        const double e = -std::log(to_unit(a, b)) / Ziggurat::r, y = -std::log(to_unit(c, d));
+        if (y + y > e * e) {
+          z = u > 0.0 ? Ziggurat::r + e : -(Ziggurat::r + e);
+          return true;
+        }
+      }
+    }
+    // The wedge: a height uniform between the layer's floor f(x_i) and ceiling f(x_{i+1}).
+    const double h =
+        t.height[i] + (double(layer_word >> 7) + 0.5) * (1.0 / 33554432.0) * (t.height[i + 1] - t.height[i]);
+    if (h < std::exp(-0.5 * x * x)) {
+      z = x;
+      return true;
+    }
+    return false;
+  }
+
   std::uint64_t seed_;
   Philox4x32::Key key_;
   std::uint64_t step_;

@@ -50,6 +50,18 @@ void BlockSparseMatrix::set_pattern(std::size_t n,
   linalg::transposed_index(n, row_start_, col_, col_start_, by_col_, by_col_row_, fill_);
 }
 
+void BlockSparseMatrix::copy_from(const BlockSparseMatrix& other) {
+  if (this == &other) return;
+  linalg::copy_grow_only(diag_, other.diag_);
+  linalg::copy_grow_only(row_start_, other.row_start_);
+  linalg::copy_grow_only(col_, other.col_);
+  linalg::copy_grow_only(values_, other.values_);
+  linalg::copy_grow_only(col_start_, other.col_start_);
+  linalg::copy_grow_only(by_col_, other.by_col_);
+  linalg::copy_grow_only(by_col_row_, other.by_col_row_);
+  pattern_id_ = other.pattern_id_;
+}
+
 void BlockSparseMatrix::set_zero() {
   for (auto& d : diag_) d.setZero();
   for (auto& v : values_) v.setZero();

@@ -178,6 +178,8 @@ void BodyResistance::body_pairs(std::vector<std::pair<std::uint32_t, std::uint32
 }
 
 void BodyResistance::bind(const BlockSparseMatrix& A) {
+  // With headroom: a new largest pattern would otherwise reallocate inside the time step.
+  if (opened_.capacity() < A.col().size()) opened_.reserve(A.col().size() + A.col().size() / 4 + 16);
   opened_.assign(A.col().size(), 0);
   for (Accepted& p : accepted_) {
     p.upper = A.find(p.body_i, p.body_j);

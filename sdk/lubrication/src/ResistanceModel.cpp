@@ -238,7 +238,7 @@ void ResistanceModel::assemble(const System& system, const NodePairList& pairs) 
     // The matrix it was built from is kept (factor_source_) for checkpoints: restore_state
     // rebuilds the same factor from it.
     if (!reuse_factor()) {
-      factor_source_ = A_;
+      factor_source_.copy_from(A_);
       factorise();
     }
   }
