@@ -46,7 +46,8 @@
 // normals put them at 1.062, z 3.09), so the test runs at the default, 1e-4, where the bias
 // (about 1 %, 0.4 SE) leaves a correct model failing rarely.
 // Measured (polar normals, tolerance 1e-4): Z 3.907 +- 0.047 against the oracle's 3.946 +-
-// 0.026 (ratio 0.990, z -0.73), 851 255 steps: pass.
+// 0.026 (ratio 0.990, z -0.73), 851 255 steps: pass. With the ziggurat normals (5 December 2026,
+// night): Z 3.885 +- 0.096 (ratio 0.985, z -0.61), g max |z| 2.46, chi-square p 0.69, 855 026 steps.
 // Power: the combined SE of Z is 2.8 %, so Z biases above about 8.5 % fail (the one-run SE said
 // 1.8 %, but that was too small); the "Z within 2 %" needs runs 20 times longer
 // (fldsim_validate_equilibrium pressure_spheres_auto).
@@ -173,7 +174,9 @@ TEST(AdaptiveEquilibrium, FreeDrainingSpheresMatchTheOracle) {
 // CPU s; at tolerance 5e-4, with Box-Muller normals). With the polar normals at 5e-4 these runs
 // read Z 4.106 +- 0.071 against 3.916 +- 0.032 (ratio 1.049, z 2.43): near the edge as for
 // spheres, so this test too runs at the default tolerance 1e-4: Z 4.014 +- 0.066 (ratio 1.025,
-// z 1.34), g max |z| 2.64, chi-square p 0.51, 866 000 steps, about 225 CPU s (polar normals).
+// z 1.34), g max |z| 2.64, chi-square p 0.51, 866 000 steps, about 225 CPU s (polar normals);
+// with the ziggurat normals Z 4.015 +- 0.087 (ratio 1.025, z 1.07), g max |z| 2.63, chi-square
+// p 0.63, 850 381 steps.
 // Broken variant, measured once with these runs: the fixed step 1e-3 gives Z 10.6 +- 0.4 (ratio
 // 2.71, z 16.1), g max |z| 13.4, chi-square 227 on 51 bins: fails.
 TEST(AdaptiveEquilibrium, FreeDrainingDicolloidsMatchTheOracle) {
