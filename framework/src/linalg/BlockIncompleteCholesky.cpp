@@ -291,8 +291,9 @@ void BlockIncompleteCholesky::backward_row_wide(std::size_t i, float* z) const {
   backward_row(i, z);
 }
 
-// z = P^T (U^T U)^-1 P r, with P the factor's row order: r is gathered into that order, the two
-// sweeps run there, and the result is scattered back (pure copies: the same for any thread count).
+// z = P^T (U^T U)^-1 P r, with P the factor's row order: r is gathered into that order (rounded to
+// single precision), the two sweeps run there, and the result is scattered back (widened to double):
+// element-wise, so the same for any thread count.
 void BlockIncompleteCholesky::apply(const double* r, double* z) const {
   const std::int64_t n = std::int64_t(inv_lower_.size());
   float* rp = permuted_r_.data();
