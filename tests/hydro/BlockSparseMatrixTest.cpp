@@ -120,8 +120,8 @@ TEST(BlockSparseMatrix, MultiplyIsIndependentOfThreadCount) {
 // bit what the two-wide kernels give, and IC(0)'s single-precision sweeps compiled for AVX2 what
 // the same loop compiled for plain x86-64 gives, on one thread and (the product's gather) on two,
 // so that results do not depend on the machine's vector width or on the thread count (the
-// multi-threaded sweeps are the plain build's). A kernel that summed in another order, or fused a
-// multiply with an add, in one build only would change the last bits and fail this.
+// multi-threaded sweeps call the same rows, compiled either way). A kernel that summed in another order, or
+// fused a multiply with an add, in one build only would change the last bits and fail this.
 #ifdef _OPENMP
 TEST(Block6Kernels, WideAndNarrowKernelsAgreeBitForBit) {
   if (!FLDSIM_HAS_AVX2()) GTEST_SKIP() << "no AVX2: only the two-wide kernels exist here";
