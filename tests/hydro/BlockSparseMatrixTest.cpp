@@ -15,6 +15,7 @@
 #include "linalg/Block6Kernels.hpp"
 #include "linalg/BlockIncompleteCholesky.hpp"
 #include "linalg/EisenstatDilu.hpp"
+#include "linalg/SinglePrecisionProduct.hpp"
 
 using fldsim::BlockPCG;
 using fldsim::BlockSparseMatrix;
@@ -152,6 +153,103 @@ TEST(Block6Kernels, WideAndNarrowKernelsAgreeBitForBit) {
   EXPECT_LE((A.dense() * x - wide.first).norm(), 1e-12 * (A.dense() * x).norm());
 }
 #endif
+
+// The single-precision product (linalg/SinglePrecisionProduct.hpp) is the product of the rounded
+// matrix and vector, summed in single precision: each entry within the bound of a k-term float sum,
+// |y - A_f x_f| <= k u (|A_f| |x_f|) with u = 2^-24 (Higham, Accuracy and Stability of Numerical
+// Algorithms, 2nd ed., sec. 3.1; k = 6 x the blocks in the row, plus the final additions), against
+// A_f x_f formed in double. And the same bits whatever the thread count and the kernel width.
+#ifdef _OPENMP
+TEST(SinglePrecisionProduct, IsTheRoundedProductOnAnyThreadCountAndWidth) {
+  const BlockSparseMatrix A = random_spd(400, 0.02, 29);
+  const Eigen::VectorXd x = random_vector(A.size(), 31);
+  fldsim::linalg::SinglePrecisionProduct single;
+  single.bind(A);
+  ASSERT_TRUE(single.bound_to(A));
+  const int threads = omp_get_max_threads();
+  auto product = [&](bool wide, int t) {
+    omp_set_num_threads(t);
+    Eigen::VectorXd y(A.size());
+    if (wide)
+      single.multiply_wide(x.data(), y.data());
+    else
+      single.multiply_narrow(x.data(), y.data());
+    omp_set_num_threads(threads);
+    return y;
+  };
+  const Eigen::VectorXd narrow = product(false, 1);
+  EXPECT_EQ((narrow - product(false, 2)).cwiseAbs().maxCoeff(), 0.0);
+  if (FLDSIM_HAS_AVX2()) {
+    EXPECT_EQ((narrow - product(true, 1)).cwiseAbs().maxCoeff(), 0.0);
+    EXPECT_EQ((narrow - product(true, 2)).cwiseAbs().maxCoeff(), 0.0);
+  }
+  const Eigen::MatrixXd Af = A.dense().cast<float>().cast<double>();
+  const Eigen::VectorXd xf = x.cast<float>().cast<double>();
+  const Eigen::VectorXd ref = Af * xf, scale = Af.cwiseAbs() * xf.cwiseAbs();
+  int most_blocks = 0;
+  for (Eigen::Index i = 0; i < Af.rows(); i += 6)
+    most_blocks =
+        std::max(most_blocks, int((Af.middleRows(i, 6).cwiseAbs().colwise().sum().array() > 0).count() / 6));
+  const double bound = (6.0 * most_blocks + 2.0) * std::ldexp(1.0, -24);
+  EXPECT_LE(((narrow - ref).array().abs() / scale.array()).maxCoeff(), bound);
+  // And it is not the double product: the rounding shows (a copy that were not rounded fails this).
+  Eigen::VectorXd exact(A.size());
+  A.multiply(x.data(), exact.data());
+  EXPECT_GT((narrow - exact).cwiseAbs().maxCoeff(), 0.0);
+}
+#endif
+
+// BlockPCG with a bound single-precision copy (BlockPCG::bind, at least 8 MB of blocks) stops on
+// the true residual |b - A x| <= tol |b| of A itself: at a tolerance above the rounding (1e-4), and
+// below it (1e-9, where the single-precision recurrence alone stalls near 1e-7), and with a copy
+// that is stale (A changed after bind): then CG goes on with A's own products. (Without the check
+// of A's own residual this fails: 7.4e-8 at 1e-9, 0.52 with the stale copy.)
+TEST(BlockPCG, SinglePrecisionProductsStopOnTheTrueResidual) {
+  // 16384 bodies, each coupled to bodies 1, 7 and 31 further on: 4 blocks a row, 18.9 MB.
+  const std::uint32_t n = 16384;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> upper;
+  for (std::uint32_t i = 0; i < n; ++i)
+    for (const std::uint32_t d : {1u, 7u, 31u})
+      if (i + d < n) upper.emplace_back(i, i + d);
+  BlockSparseMatrix A;
+  A.set_pattern(n, upper);
+  // SPD by block diagonal dominance, as random_spd.
+  std::mt19937_64 rng(37);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<double> row_norm(n, 0.0);
+  for (const auto& [i, j] : upper) {
+    Mat6& block = A.upper(A.find(i, j));
+    block = Mat6::NullaryExpr([&]() { return u(rng); });
+    row_norm[i] += block.norm();
+    row_norm[j] += block.norm();
+  }
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const Mat6 M = Mat6::NullaryExpr([&]() { return u(rng); });
+    A.diagonal(i) = M * M.transpose() + (row_norm[i] + 0.5) * Mat6::Identity();
+  }
+  ASSERT_TRUE(fldsim::linalg::SinglePrecisionProduct::pays(A));
+  const Eigen::VectorXd b = random_vector(A.size(), 41);
+  auto true_residual = [&](const Eigen::VectorXd& x) {
+    Eigen::VectorXd Ax(A.size());
+    A.multiply(x.data(), Ax.data());
+    return (b - Ax).norm() / b.norm();
+  };
+  BlockPCG pcg;
+  pcg.prepare(A);
+  pcg.bind(A);
+  for (const double tol : {1e-4, 1e-9}) {
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(A.size());
+    const auto res = pcg.solve(A, b.data(), x.data(), tol, 500);
+    ASSERT_TRUE(res.converged) << "tolerance " << tol;
+    EXPECT_LE(true_residual(x), tol) << "tolerance " << tol;
+    EXPECT_NEAR(res.relative_residual, true_residual(x), 1e-3 * tol) << "tolerance " << tol;
+  }
+  for (std::size_t i = 0; i < n; ++i) A.diagonal(i) *= 1.5;  // the bound copy is now stale
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(A.size());
+  const auto res = pcg.solve(A, b.data(), x.data(), 1e-6, 500);
+  ASSERT_TRUE(res.converged);
+  EXPECT_LE(true_residual(x), 1e-6);
+}
 
 class BlockPCGWith : public ::testing::TestWithParam<fldsim::Preconditioner> {};
 

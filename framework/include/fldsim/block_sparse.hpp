@@ -89,6 +89,11 @@ class FLDSIM_VISIBLE BlockPCG {
   BlockPCG& operator=(const BlockPCG&) = delete;
   // Factor the preconditioner (call after each assembly).
   void prepare(const BlockSparseMatrix& A);
+  // A's values were (re)assembled (call after each assembly, also when the factor is kept). Where A
+  // streams from memory (at least 8 MB of blocks) the solver then keeps a single-precision copy for
+  // the CG products; the stopping rule stays |b - A x| <= tol |b| with A itself (API 5.5; without
+  // this call the products are A's own).
+  void bind(const BlockSparseMatrix& A);
   Result solve(const BlockSparseMatrix& A, const double* b, double* x, double tolerance, int max_iterations);
   // The preconditioner in use after prepare(): on breakdown IC(0) falls back to Eisenstat D-ILU, and
   // either to block Jacobi.

@@ -245,6 +245,11 @@ struct Vec6f {
     __builtin_memcpy(p, &lo, sizeof(Float4));
     __builtin_memcpy(p + 4, &hi, sizeof(Float2));
   }
+  FLDSIM_KERNEL static Vec6f zero() { return Vec6f{Float8{}}; }
+  FLDSIM_KERNEL Vec6f& operator+=(const Vec6f& o) {
+    v += o.v;
+    return *this;
+  }
   FLDSIM_KERNEL Vec6f& operator-=(const Vec6f& o) {
     v -= o.v;
     return *this;
