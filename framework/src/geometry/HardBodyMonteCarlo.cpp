@@ -1,7 +1,9 @@
 #include "geometry/HardBodyMonteCarlo.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <iomanip>
 #include <limits>
 #include <numbers>
 #include <sstream>
@@ -281,6 +283,30 @@ MonteCarloReport initialise_monte_carlo(System& s, const MonteCarloOptions& opt,
       << ", msd " << mc.mean_square_displacement() << ", P2 " << mc.orientation_p2() << ")";
     log(o.str());
   };
+  // A dense or large start can take minutes (8000 spheres at phi 0.5: more than ten, most of it
+  // compressing): a line every 30 s of wall time says where it is (the configuration does not
+  // depend on it).
+  auto last_line = std::chrono::steady_clock::now();
+  auto say_now_and_then = [&](const char* phase) {
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_line < std::chrono::seconds(30)) return;
+    last_line = now;
+    std::ostringstream o;
+    o << phase << ", volume fraction " << std::setprecision(4)
+      << double(s.size()) * s.shape().volume() / s.box().volume() << " of " << std::setprecision(4)
+      << double(s.size()) * s.shape().volume() / (target_edge * target_edge * target_edge);
+    say(o.str());
+  };
+  auto check_stop = [&] {
+    if (!opt.stop) return;
+    const std::string why = opt.stop();
+    if (!why.empty())
+      throw Error(
+          "monte carlo start stopped by " + why + " after " + std::to_string(mc.sweeps_done()) +
+          " sweeps (volume fraction " +
+          number_text(std::round(1e4 * double(s.size()) * s.shape().volume() / s.box().volume()) / 1e4) +
+          "); nothing was run");
+  };
   auto check_budget = [&] {
     if (mc.sweeps_done() >= opt.max_sweeps)
       throw Error("monte carlo: no valid configuration after " + std::to_string(opt.max_sweeps) +
@@ -293,6 +319,8 @@ MonteCarloReport initialise_monte_carlo(System& s, const MonteCarloOptions& opt,
     mc.adapt_steps(opt.target_acceptance);
     reached = mc.compress_towards(target_edge);
     check_budget();
+    check_stop();
+    say_now_and_then("still compressing");
   }
   say("reached the target volume fraction");
 
@@ -313,6 +341,8 @@ MonteCarloReport initialise_monte_carlo(System& s, const MonteCarloOptions& opt,
     mc.sweep();
     ++done;
     check_budget();
+    check_stop();
+    say_now_and_then("still equilibrating");
   }
   say("equilibrated");
 

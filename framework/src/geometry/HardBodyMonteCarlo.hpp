@@ -44,6 +44,9 @@ struct MonteCarloOptions {
   double decorrelation_msd = 4.0;     // a^2, mean-square displacement since the start
   double decorrelation_p2 = 0.05;     // <P2(n(t).n(0))> must fall below this
   std::int64_t max_sweeps = 1000000;  // give up (throw) beyond this
+  // Asked after every sweep: a non-empty answer (what stopped it, e.g. "SIGINT") ends the start
+  // with an Error saying so, so that a signal during a long start is obeyed at once.
+  std::function<std::string()> stop;
 };
 
 struct MonteCarloReport {

@@ -7,6 +7,7 @@
 #include "fldsim/error.hpp"
 #include "geometry/HardBodyMonteCarlo.hpp"
 #include "io/FrameReader.hpp"
+#include "run/StopRequest.hpp"
 
 namespace fldsim {
 namespace {
@@ -56,6 +57,10 @@ void place_by_monte_carlo(System& sys, const Experiment& ex, std::ostream& log) 
   geometry::MonteCarloOptions opt;
   opt.seed = std::uint64_t(ex.init_seed);
   opt.sweeps = ex.init_sweeps;
+  opt.stop = [] {  // SIGINT/SIGTERM during a long start end it at once (run/StopRequest.hpp)
+    const int sig = StopRequest::signal();
+    return sig == 0 ? std::string() : std::string(StopRequest::signal_name(sig));
+  };
   const auto t0 = std::chrono::steady_clock::now();
   const geometry::MonteCarloReport r =
       geometry::initialise_monte_carlo(sys, opt, [&](const std::string& m) { log << "  mc: " << m << "\n"; });
