@@ -95,8 +95,19 @@ int run_experiment(const Experiment& ex, const PluginRegistry& registry, const R
   StopRequest::install();
   Checkpoint resume;
   if (!opt.resume.empty()) resume = read_checkpoint(opt.resume);
-  const auto sim = Simulation::from_experiment(run, registry, sink, log,
-                                               opt.resume.empty() ? nullptr : &resume, opt.resume);
+  std::unique_ptr<Simulation> sim;
+  try {
+    sim = Simulation::from_experiment(run, registry, sink, log, opt.resume.empty() ? nullptr : &resume,
+                                      opt.resume);
+  } catch (const Error& e) {
+    // A signal during the set-up (a long Monte Carlo start ends at its next sweep): nothing was
+    // run, so nothing to keep; exit as an interrupted run does (a sweep then starts the point anew).
+    const int stop = StopRequest::signal();
+    if (stop == 0) throw;
+    std::clog << "fldsim: " << e.what() << "\n";
+    std::clog.flush();
+    return 128 + stop;
+  }
   write_provenance(sink, ex, registry, *sim);
 
   const std::string checkpoint_path = output + ".checkpoint";
