@@ -222,3 +222,54 @@ TEST(CellNeighbourList, MinGapIsTheSmallestSurfaceGap) {
   EXPECT_NEAR(nl.min_gap(*sc.system), gap, 1e-12);
   EXPECT_EQ(nl.rebuilds(), 1);
 }
+
+// update() recomputes only the pairs of nodes that moved since the last update when the strain is
+// unchanged (a step's end-of-step gap check and the next step's first stage, between which only
+// the bodies wrapped through a face move). The list must then be bitwise what a refresh of every
+// pair gives: r = minimum_image(x_j - x_i), distance = |r|. A version that skipped the moved
+// pairs fails at the moved body (r stale by its 0.01 a step) and at the wrapped ones (r of the
+// unwrapped positions differs in the last bits).
+TEST(CellNeighbourList, AnUpdateAtTheSameStrainRecomputesThePairsOfMovedNodes) {
+  auto shape = std::make_shared<shapes::DicolloidShape>(1.0, 0.5, 1.0);
+  Scene sc = make_scene(shape, 150, 12.0, 0.3, 11);
+  auto& s = *sc.system;
+  CellNeighbourList nl;
+  nl.configure(2.5, 0.4);
+  ASSERT_TRUE(nl.update(s));
+  auto expect_fresh = [&](const char* when) {
+    SCOPED_TRACE(when);
+    const std::size_t m = s.nodes_per_body();
+    std::size_t checked = 0;
+    for (const NodePair& p : nl.pairs().pairs()) {
+      const Vec3 r = s.box().minimum_image(s.node_positions()[p.body_j * m + p.node_b] -
+                                           s.node_positions()[p.body_i * m + p.node_a]);
+      ASSERT_EQ(p.r, r) << "pair " << p.body_i << "-" << p.body_j;
+      ASSERT_EQ(p.distance, r.norm());
+      ++checked;
+    }
+    EXPECT_GT(checked, 100u);
+  };
+  expect_fresh("after the build");
+  move_all(sc, 0.05);  // every node moves: a full refresh
+  EXPECT_FALSE(nl.update(s));
+  expect_fresh("after moving every body");
+  // Same strain: wrap five bodies that lie outside the box and move one by 0.01 a.
+  int wrapped = 0;
+  for (std::size_t i = 0; i < s.size() && wrapped < 5; ++i) {
+    Vec3 x = s.positions()[i];
+    s.box().wrap(x);
+    if (x == s.positions()[i]) continue;
+    s.positions()[i] = x;
+    ++wrapped;
+  }
+  ASSERT_EQ(wrapped, 5);
+  s.positions()[7] += Vec3(0.01, 0.0, 0.0);
+  s.update_nodes();
+  EXPECT_FALSE(nl.update(s));
+  expect_fresh("after wrapping five bodies and moving one");
+  EXPECT_FALSE(nl.update(s));  // nothing moved
+  expect_fresh("after an update with nothing moved");
+  s.box().set_strain(s.box().strain() + 1e-3);  // the strain changed: every pair again
+  EXPECT_FALSE(nl.update(s));
+  expect_fresh("after a strain change");
+}

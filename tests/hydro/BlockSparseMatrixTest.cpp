@@ -12,6 +12,7 @@
 
 #include "KershawCycle.hpp"
 #include "fldsim/block_sparse.hpp"
+#include "fldsim/parallel_loop.hpp"
 #include "linalg/Block6Kernels.hpp"
 #include "linalg/BlockIncompleteCholesky.hpp"
 #include "linalg/EisenstatDilu.hpp"
@@ -114,6 +115,38 @@ TEST(BlockSparseMatrix, MultiplyIsIndependentOfThreadCount) {
   omp_set_num_threads(threads);
   // Bitwise equal: every row is summed in the same fixed order whatever the thread count.
   EXPECT_EQ((y1 - y2).cwiseAbs().maxCoeff(), 0.0);
+}
+#endif
+
+// parallel_for and parallel_region (fldsim/parallel_loop.hpp) enter no OpenMP region on one
+// thread (a region costs a futex system call even with a team of one), cover the range exactly
+// once on any thread count, and with several threads do run a team. The old form, a bare
+// `#pragma omp parallel for`, fails the first check: inside it omp_get_level() is 1.
+#ifdef _OPENMP
+TEST(ParallelLoop, OneThreadEntersNoRegionAndEveryIndexRunsOnce) {
+  const int threads = omp_get_max_threads();
+  for (const int t : {1, 2, 3}) {
+    SCOPED_TRACE("threads " + std::to_string(t));
+    omp_set_num_threads(t);
+    std::vector<int> hits(1000, 0), level(1000, -1);
+    fldsim::parallel_for(std::int64_t(1000), [&](std::int64_t k) {
+      ++hits[std::size_t(k)];
+      level[std::size_t(k)] = omp_get_level();
+    });
+    EXPECT_EQ(std::count(hits.begin(), hits.end(), 1), 1000);
+    EXPECT_EQ(*std::max_element(level.begin(), level.end()), t == 1 ? 0 : 1);
+    std::vector<int> region_hits(1000, 0);
+    int team = 0;
+    fldsim::parallel_region([&] {
+#pragma omp single
+      team = omp_get_num_threads();
+#pragma omp for schedule(static)
+      for (int k = 0; k < 1000; ++k) ++region_hits[std::size_t(k)];
+    });
+    EXPECT_EQ(std::count(region_hits.begin(), region_hits.end(), 1), 1000);
+    EXPECT_EQ(team, t);
+  }
+  omp_set_num_threads(threads);
 }
 #endif
 

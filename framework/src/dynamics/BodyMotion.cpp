@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "fldsim/parallel_loop.hpp"
+
 namespace fldsim {
 
 void BodySnapshot::save(const System& s) {
@@ -23,8 +25,7 @@ void move_from(System& s, const BodySnapshot& base, const double* U, double h) {
   const std::size_t n = s.size();
   auto& x = s.positions();
   auto& q = s.orientations();
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
+  parallel_for(n, [&](std::size_t i) {
     const double* u = U + 6 * i;
     x[i] = base.positions[i] + h * Vec3(u[0], u[1], u[2]);
     const Vec3 w(u[3], u[4], u[5]);
@@ -33,7 +34,7 @@ void move_from(System& s, const BodySnapshot& base, const double* U, double h) {
     Quat dq = Quat::Identity();
     if (rate > 0.0 && h != 0.0) dq = Quat(Eigen::AngleAxisd(h * rate, w / rate));
     q[i] = (dq * base.orientations[i]).normalized();
-  }
+  });
   s.box().set_strain(base.strain + h * s.physics().shear_rate);
   s.set_time(base.time + h);
   s.update_nodes();

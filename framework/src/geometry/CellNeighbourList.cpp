@@ -5,6 +5,8 @@
 #include <limits>
 #include <tuple>
 
+#include "fldsim/parallel_loop.hpp"
+
 namespace fldsim::geometry {
 
 void CellNeighbourList::configure(double range, double skin) {
@@ -44,12 +46,22 @@ bool CellNeighbourList::needs_rebuild(const System& s) const {
 }
 
 bool CellNeighbourList::update(const System& s) {
-  if (needs_rebuild(s)) {
+  const bool rebuilt = needs_rebuild(s);
+  if (rebuilt)
     rebuild(s);
-    return true;
-  }
-  refresh(s);
-  return false;
+  else if (s.box().strain() == updated_strain_ && updated_positions_.size() == s.node_count())
+    refresh_moved(s);
+  else
+    refresh(s);
+  remember_positions(s);
+  return rebuilt;
+}
+
+void CellNeighbourList::remember_positions(const System& s) {
+  const auto& x = s.node_positions();
+  updated_positions_.resize(x.size());  // allocates only when the node count grows
+  std::copy(x.begin(), x.end(), updated_positions_.begin());
+  updated_strain_ = s.box().strain();
 }
 
 void CellNeighbourList::add_pair(const System& s, std::size_t p, std::size_t q, const Vec3& r) {
@@ -113,16 +125,67 @@ void CellNeighbourList::rebuild(const System& s) {
   ++rebuilds_;
 }
 
+namespace {
+// LeesEdwardsBox::minimum_image with the box's reciprocal edge and image offset computed once
+// per pass, and rounding without a libm call, instead of a division and a std::round per
+// component and a floor per pair. For a listed pair, whose minimum image is shorter than the list
+// cutoff (< L/2), r/L lies within cutoff/L of an integer: r * (1/L) rounds to the same integer as
+// r / L, no tie arises (where round-half-even and std::round differ), and the result is bitwise
+// minimum_image's.
+struct ListedPairImage {
+  double L, inverse_L, offset;
+  explicit ListedPairImage(const LeesEdwardsBox& box)
+      : L(box.edge()), inverse_L(1.0 / box.edge()), offset(box.offset()) {}
+  // Nearest integer of |v| < 2^51: adding and removing 1.5 * 2^52 drops the fraction bits.
+  static double nearest(double v) {
+    constexpr double shift = 6755399441055744.0;
+    return (v + shift) - shift;
+  }
+  Vec3 operator()(Vec3 r) const {
+    const double ny = nearest(r.y() * inverse_L);
+    r.y() -= ny * L;
+    r.x() -= ny * offset;
+    r.x() -= nearest(r.x() * inverse_L) * L;
+    r.z() -= nearest(r.z() * inverse_L) * L;
+    return r;
+  }
+};
+}  // namespace
+
 void CellNeighbourList::refresh(const System& s) {
-  const auto& box = s.box();
+  const ListedPairImage image(s.box());
   const auto& x = s.node_positions();
   const std::size_t m = s.nodes_per_body();
   auto& pairs = list_.pairs();
   const std::ptrdiff_t count = std::ptrdiff_t(pairs.size());
-#pragma omp parallel for schedule(static)
-  for (std::ptrdiff_t k = 0; k < count; ++k) {
+  parallel_for(count, [&](std::ptrdiff_t k) {
     NodePair& pr = pairs[k];
-    pr.r = box.minimum_image(x[pr.body_j * m + pr.node_b] - x[pr.body_i * m + pr.node_a]);
+    pr.r = image(x[pr.body_j * m + pr.node_b] - x[pr.body_i * m + pr.node_a]);
+    pr.distance = pr.r.norm();
+  });
+}
+
+// Same strain as the last update: a pair of unmoved nodes keeps its r exactly. Typically only
+// the few bodies wrapped through a face at the end of a step have moved.
+void CellNeighbourList::refresh_moved(const System& s) {
+  const auto& x = s.node_positions();
+  const std::size_t n = x.size(), m = s.nodes_per_body();
+  moved_.resize(n);
+  std::size_t moved = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    moved_[k] = x[k] != updated_positions_[k];
+    moved += moved_[k];
+  }
+  if (moved == 0) return;
+  if (8 * moved > n) {  // most pairs would be recomputed anyway
+    refresh(s);
+    return;
+  }
+  const ListedPairImage image(s.box());
+  for (NodePair& pr : list_.pairs()) {
+    const std::size_t i = pr.body_i * m + pr.node_a, j = pr.body_j * m + pr.node_b;
+    if (!moved_[i] && !moved_[j]) continue;
+    pr.r = image(x[j] - x[i]);
     pr.distance = pr.r.norm();
   }
 }

@@ -24,7 +24,8 @@ class CellNeighbourList {
   // of different bodies with distance < range + skin at the last rebuild.
   void configure(double range, double skin);
   // Call after System::update_nodes(). Rebuilds when needed (see above), otherwise refreshes r and
-  // distance of the listed pairs. Returns true if it rebuilt. No allocation when not rebuilding.
+  // distance of the listed pairs whose nodes moved since the last update (all of them when the
+  // strain changed). Returns true if it rebuilt. No allocation when not rebuilding.
   bool update(const System& s);
   const NodePairList& pairs() const { return list_; }
   std::int64_t rebuilds() const { return rebuilds_; }
@@ -35,6 +36,8 @@ class CellNeighbourList {
   bool needs_rebuild(const System& s) const;
   void rebuild(const System& s);
   void refresh(const System& s);
+  void refresh_moved(const System& s);
+  void remember_positions(const System& s);
   void add_pair(const System& s, std::size_t p, std::size_t q, const Vec3& r);
 
   double range_ = 0.0, skin_ = 0.0;
@@ -45,7 +48,13 @@ class CellNeighbourList {
   std::vector<Vec3> reference_positions_;
   double reference_strain_ = 0.0, reference_edge_ = 0.0;
   std::size_t reference_nodes_ = 0;
-  // Cell list scratch (reused across rebuilds).
+  // State at the last update: the listed r and distance are exact for these node positions and
+  // strain, so an update at the same state (a step's end-of-step gap check and the next step's
+  // first stage, between which only the bodies that crossed a face moved) recomputes only the
+  // pairs of moved nodes.
+  std::vector<Vec3> updated_positions_;
+  double updated_strain_ = 0.0;
+  std::vector<unsigned char> moved_;  // Cell list scratch (reused across rebuilds).
   LeesEdwardsCellGrid grid_;
   std::vector<Vec3> wrapped_;
   std::vector<int> cell_head_, cell_next_;

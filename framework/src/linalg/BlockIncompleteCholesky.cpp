@@ -8,6 +8,7 @@
 #include <cmath>
 #include <memory>
 
+#include "fldsim/parallel_loop.hpp"
 #include "linalg/Block6Kernels.hpp"
 #include "linalg/CuthillMcKee.hpp"
 #include "linalg/GrowOnly.hpp"
@@ -186,8 +187,7 @@ bool BlockIncompleteCholesky::factorize(const BlockSparseMatrix& A) {
     linalg::resize_grow_only(lower_f_, std::size_t(blocks) + 1);
     lower_f_[std::size_t(blocks)].setZero();
   }
-#pragma omp parallel
-  {
+  parallel_region([&] {
 #pragma omp for schedule(static) nowait
     for (std::int64_t i = 0; i < n; ++i) pivot_f_[i] = inv_lower_[i].cast<float>();
 #pragma omp for schedule(static)
@@ -198,7 +198,7 @@ bool BlockIncompleteCholesky::factorize(const BlockSparseMatrix& A) {
 #pragma omp for schedule(static)
       for (std::int64_t c = 0; c < blocks; ++c) lower_f_[c] = upper_f_[by_col_[c]];
     }
-  }
+  });
   gathered_ = gather;
   return true;
 }

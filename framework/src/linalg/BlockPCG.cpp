@@ -1,6 +1,7 @@
 #include <Eigen/Cholesky>
 #include <cmath>
 
+#include "fldsim/parallel_loop.hpp"
 #include "fldsim/block_sparse.hpp"
 #include "linalg/BlockIncompleteCholesky.hpp"
 #include "linalg/EisenstatDilu.hpp"
@@ -83,19 +84,17 @@ void BlockPCG::prepare(const BlockSparseMatrix& A) {
   }
   w.active = Preconditioner::BlockJacobi;
   w.inv_diag.resize(n);
-#pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < std::int64_t(n); ++i) {
+  parallel_for(std::int64_t(n), [&](std::int64_t i) {
     // Diagonal blocks of an SPD matrix are SPD: invert through their Cholesky factor.
     Eigen::LLT<Mat6> llt(A.diagonal(std::size_t(i)));
     w.inv_diag[i] = llt.solve(Mat6::Identity());
-  }
+  });
 }
 
 double BlockPCG::Workspace::dot(const std::vector<double>& a, const std::vector<double>& b) {
   const std::size_t m = a.size();
   const std::int64_t chunks = std::int64_t(partial.size());
-#pragma omp parallel for schedule(static)
-  for (std::int64_t c = 0; c < chunks; ++c) {
+  parallel_for(chunks, [&](std::int64_t c) {
     // Four interleaved sums: one running sum is a chain of dependent additions (one FP-add
     // latency per element, about 3 % of a step at N = 1000); four let them overlap.
     const std::size_t begin = std::size_t(c) * kChunk, end = std::min(m, begin + kChunk);
@@ -109,7 +108,7 @@ double BlockPCG::Workspace::dot(const std::vector<double>& a, const std::vector<
     }
     for (; k < end; ++k) s0 += a[k] * b[k];
     partial[c] = (s0 + s1) + (s2 + s3);
-  }
+  });
   double s = 0.0;
   for (const double v : partial) s += v;
   return s;
@@ -121,9 +120,9 @@ void BlockPCG::Workspace::precondition(const std::vector<double>& in, std::vecto
     return;
   }
   const std::int64_t n = std::int64_t(inv_diag.size());
-#pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < n; ++i)
+  parallel_for(n, [&](std::int64_t i) {
     Eigen::Map<Vec6>(out.data() + 6 * i) = inv_diag[i] * Eigen::Map<const Vec6>(in.data() + 6 * i);
+  });
 }
 
 // With a single-precision copy of A bound (bind()), CG's products use it and the recurrence
@@ -144,13 +143,11 @@ BlockPCG::Result BlockPCG::solve(const BlockSparseMatrix& A, const double* b, do
   };
   auto residual = [&] {
     multiply(x, q_.data());
-#pragma omp parallel for schedule(static)
-    for (std::int64_t k = 0; k < m; ++k) r_[k] = b[k] - q_[k];
+    parallel_for(m, [&](std::int64_t k) { r_[k] = b[k] - q_[k]; });
     return std::sqrt(w.dot(r_, r_));
   };
   Result result;
-#pragma omp parallel for schedule(static)
-  for (std::int64_t k = 0; k < m; ++k) z_[k] = b[k];
+  parallel_for(m, [&](std::int64_t k) { z_[k] = b[k]; });
   const double bnorm = std::sqrt(w.dot(z_, z_));
   if (bnorm == 0.0) {
     std::fill(x, x + m, 0.0);
@@ -181,11 +178,10 @@ BlockPCG::Result BlockPCG::solve(const BlockSparseMatrix& A, const double* b, do
   for (int it = 1; it <= max_iterations; ++it) {
     multiply(p_.data(), q_.data());
     const double alpha = rz / w.dot(p_, q_);
-#pragma omp parallel for schedule(static)
-    for (std::int64_t k = 0; k < m; ++k) {
+    parallel_for(m, [&](std::int64_t k) {
       x[k] += alpha * p_[k];
       r_[k] -= alpha * q_[k];
-    }
+    });
     rnorm = std::sqrt(w.dot(r_, r_));
     result.iterations = it;
     result.relative_residual = rnorm / bnorm;
@@ -203,8 +199,7 @@ BlockPCG::Result BlockPCG::solve(const BlockSparseMatrix& A, const double* b, do
     }
     const double beta = rz_new / rz;
     rz = rz_new;
-#pragma omp parallel for schedule(static)
-    for (std::int64_t k = 0; k < m; ++k) p_[k] = z_[k] + beta * p_[k];
+    parallel_for(m, [&](std::int64_t k) { p_[k] = z_[k] + beta * p_[k]; });
   }
   return result;
 }
@@ -230,11 +225,10 @@ BlockPCG::Result BlockPCG::Workspace::solve_transformed(const BlockSparseMatrix&
   for (int it = 1; it <= max_iterations; ++it) {
     w.dilu.operator_times(A, p.data(), q.data(), w.t.data());
     const double alpha = rz / w.dot(p, q);
-#pragma omp parallel for schedule(static)
-    for (std::int64_t k = 0; k < m; ++k) {
+    parallel_for(m, [&](std::int64_t k) {
       xh[k] += alpha * p[k];
       rh[k] -= alpha * q[k];
-    }
+    });
     result.iterations = it;
     w.dilu.pivot_times(rh.data(), z.data());
     const double rz_new = w.dot(rh, z);
@@ -251,12 +245,10 @@ BlockPCG::Result BlockPCG::Workspace::solve_transformed(const BlockSparseMatrix&
     }
     const double beta = rz_new / rz;
     rz = rz_new;
-#pragma omp parallel for schedule(static)
-    for (std::int64_t k = 0; k < m; ++k) p[k] = z[k] + beta * p[k];
+    parallel_for(m, [&](std::int64_t k) { p[k] = z[k] + beta * p[k]; });
   }
   w.dilu.backward(A, xh.data(), w.t.data());
-#pragma omp parallel for schedule(static)
-  for (std::int64_t k = 0; k < m; ++k) x[k] += w.t[k];
+  parallel_for(m, [&](std::int64_t k) { x[k] += w.t[k]; });
   return result;
 }
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "fldsim/parallel_loop.hpp"
 #include "linalg/Block6Kernels.hpp"
 #include "linalg/GrowOnly.hpp"
 
@@ -63,8 +64,7 @@ FLDSIM_KERNEL void gather_row(const BlockSparseMatrix& A, const Mat6f* D, const 
 FLDSIM_KERNEL void product(const BlockSparseMatrix& A, const Mat6f* D, const Mat6f* U, const double* x,
                            float* xf, float* yf, double* y) {
   const std::int64_t n = std::int64_t(A.blocks()), m = 6 * n;
-#pragma omp parallel for schedule(static)
-  for (std::int64_t k = 0; k < m; ++k) xf[k] = float(x[k]);
+  parallel_for(m, [&](std::int64_t k) { xf[k] = float(x[k]); });
   if (omp_get_max_threads() == 1) {
     scatter(A, D, U, xf, yf);
   } else {
@@ -72,8 +72,7 @@ FLDSIM_KERNEL void product(const BlockSparseMatrix& A, const Mat6f* D, const Mat
 #pragma omp parallel for schedule(static)
     for (std::int64_t i = 0; i < n; ++i) gather_row(A, D, U, i, ahead, xf, yf);
   }
-#pragma omp parallel for schedule(static)
-  for (std::int64_t k = 0; k < m; ++k) y[k] = double(yf[k]);
+  parallel_for(m, [&](std::int64_t k) { y[k] = double(yf[k]); });
 }
 
 }  // namespace
@@ -82,10 +81,8 @@ void SinglePrecisionProduct::bind(const BlockSparseMatrix& A) {
   const std::size_t n = A.blocks(), nnz = A.col().size();
   resize_grow_only(diag_, n + 1);
   resize_grow_only(upper_, nnz + 1);
-#pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < std::int64_t(n); ++i) diag_[i] = A.diagonal(std::size_t(i)).cast<float>();
-#pragma omp parallel for schedule(static)
-  for (std::int64_t k = 0; k < std::int64_t(nnz); ++k) upper_[k] = A.upper(k).cast<float>();
+  parallel_for(std::int64_t(n), [&](std::int64_t i) { diag_[i] = A.diagonal(std::size_t(i)).cast<float>(); });
+  parallel_for(std::int64_t(nnz), [&](std::int64_t k) { upper_[k] = A.upper(k).cast<float>(); });
   diag_[n].setZero();
   upper_[nnz].setZero();
   resize_grow_only(x_, 6 * n);

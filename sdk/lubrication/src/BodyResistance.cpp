@@ -4,6 +4,7 @@
 
 #include "CrossMatrix.hpp"
 #include "fldsim-sdk/lubrication/Visibility.hpp"
+#include "fldsim/parallel_loop.hpp"
 #include "fldsim/rigid.hpp"
 
 namespace fldsim::hydro {
@@ -123,8 +124,7 @@ bool BodyResistance::update(const System& system, const NodePairList& pairs) {
   rows_.resize(closed_forms_ ? 0 : accepted_.size());  // the general path only
 
   const double mu = system.physics().viscosity;
-#pragma omp parallel for schedule(static)
-  for (std::int64_t k = 0; k < std::int64_t(accepted_.size()); ++k) {
+  parallel_for(std::int64_t(accepted_.size()), [&](std::int64_t k) {
     const Accepted& p = accepted_[k];
     LubricationCoefficients c;
     const Vec3& xa = offsets[std::size_t(p.body_i) * m + p.node_a];
@@ -139,7 +139,7 @@ bool BodyResistance::update(const System& system, const NodePairList& pairs) {
       const bool offset = !(xa.isZero(0.0) && xb.isZero(0.0));
       closed_[k] = {p.separation / p.distance, c, p.weight, xa, xb, true, offset};
       if (offset) offset_gram(closed_[k].d, c, p.weight, xa, xb, block_ii_[k], block_jj_[k], block_ij_[k]);
-      continue;
+      return;
     }
     // The general path (set_closed_forms(false), the tests' reference): body rows and Gram products.
     closed_[k].on = false;
@@ -153,7 +153,7 @@ bool BodyResistance::update(const System& system, const NodePairList& pairs) {
     block_ii_[k] = 0.5 * (ii + ii.transpose());
     block_jj_[k] = 0.5 * (jj + jj.transpose());
     block_ij_[k] = B.leftCols<6>().transpose().lazyProduct(B.rightCols<6>());
-  }
+  });
   return changed;
 }
 
@@ -228,27 +228,25 @@ BodyResistance::BodyRows BodyResistance::rows(std::size_t k) const {
 }
 
 void BodyResistance::add_strain_force(const Eigen::Matrix3d& E, double* rhs) {
-#pragma omp parallel for schedule(static)
-  for (std::int64_t k = 0; k < std::int64_t(accepted_.size()); ++k) {
+  parallel_for(std::int64_t(accepted_.size()), [&](std::int64_t k) {
     // Mode velocities of the ambient flow: only the relative velocity E L_ij of node j enters
     // (the rigid part Omega_inf cancels in every mode).
     if (const ClosedForm& c = closed_[k]; c.on) {
       const Eigen::Matrix<double, 12, 1> w =
           LubricationPair::centred_strain_wrench(c.d, c.c, c.weight, E * accepted_[k].arm);
       pair_force_[k] = c.offset ? carried(w, c.xa, c.xb) : w;
-      continue;
+      return;
     }
     const Eigen::Matrix<double, LubricationPair::kRows, 1> e =
         rows_[k].middleCols<3>(6).lazyProduct(E * accepted_[k].arm);
     pair_force_[k] = -(rows_[k].transpose().lazyProduct(e));
-  }
+  });
   sum_per_body(rhs);
 }
 
 void BodyResistance::add_brownian(const RandomStream& noise, std::size_t nodes_per_body, double scale,
                                   double* FB) {
-#pragma omp parallel for schedule(static)
-  for (std::int64_t k = 0; k < std::int64_t(accepted_.size()); ++k) {
+  parallel_for(std::int64_t(accepted_.size()), [&](std::int64_t k) {
     const Accepted& p = accepted_[k];
     // The draw depends only on the pair's identity: object (body_i, body_j), normals from index
     // 16 (node_a m + node_b), in the pair-noise stream (separate from the bodies' R_0 noise).
@@ -263,10 +261,10 @@ void BodyResistance::add_brownian(const RandomStream& noise, std::size_t nodes_p
     if (const ClosedForm& c = closed_[k]; c.on) {
       const Eigen::Matrix<double, 12, 1> w = LubricationPair::centred_noise(c.d, c.c, c.weight, beta);
       pair_force_[k] = scale * (c.offset ? carried(w, c.xa, c.xb) : w);
-      continue;
+      return;
     }
     pair_force_[k] = scale * rows_[k].transpose().lazyProduct(beta);
-  }
+  });
   sum_per_body(FB);
 }
 

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "fldsim/parallel_loop.hpp"
+
 namespace fldsim::hydro {
 
 namespace {
@@ -50,8 +52,7 @@ void IsotropicResistance::update(const System& system, const Eigen::Matrix3d& E,
   const std::size_t n = system.size();
   const std::size_t m = system.nodes_per_body();
   const double mu = system.physics().viscosity;
-#pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < std::int64_t(n); ++i) {
+  parallel_for(std::int64_t(n), [&](std::int64_t i) {
     blocks_[i] = scale_ * node_sum(system, std::size_t(i)) * scale_;
     factors_[i].compute(blocks_[i]);
     Vec6 s = Vec6::Zero();
@@ -64,7 +65,7 @@ void IsotropicResistance::update(const System& system, const Eigen::Matrix3d& E,
       }
     }
     strain_[i] = scale_ * s;
-  }
+  });
 }
 
 Eigen::Matrix3d IsotropicResistance::stresslet_sum(const System& system, const Eigen::Matrix3d& E,

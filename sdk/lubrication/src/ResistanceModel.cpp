@@ -8,6 +8,7 @@
 
 #include "fldsim/error.hpp"
 #include "fldsim/number_text.hpp"
+#include "fldsim/parallel_loop.hpp"
 
 namespace fldsim::hydro {
 
@@ -410,13 +411,12 @@ void ResistanceModel::brownian_force(const System& system, const NodePairList& p
   const double kT = system.physics().kT;
   if (!request_.brownian || kT == 0.0) return;
   const double scale = std::sqrt(2.0 * kT / dt);
-#pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < std::int64_t(n); ++i) {
+  parallel_for(std::int64_t(n), [&](std::int64_t i) {
     Vec6 alpha;
     noise.normals(std::uint64_t(i), alpha.data(), 6);
     const Vec6 f = iso_.factor(std::size_t(i)).matrixL() * alpha;
     Eigen::Map<Vec6>(FB + 6 * i) = scale * f;
-  }
+  });
   if (settings_.lubrication)
     lub_.add_brownian(noise.for_purpose(RandomPurpose::PairNoise), system.nodes_per_body(), scale, FB);
 }
@@ -426,10 +426,10 @@ void ResistanceModel::solve(const System& system, const double* F, double* dU) {
   for (std::size_t k = 0; k < 6 * n; ++k) rhs_[k] = F[k] + strain_force_[k];
   if (!settings_.lubrication) {
     // Free draining: bodies are uncoupled, a direct 6x6 solve each.
-#pragma omp parallel for schedule(static)
-    for (std::int64_t i = 0; i < std::int64_t(n); ++i)
+    parallel_for(std::int64_t(n), [&](std::int64_t i) {
       Eigen::Map<Vec6>(dU + 6 * i) =
           iso_.factor(std::size_t(i)).solve(Eigen::Map<const Vec6>(rhs_.data() + 6 * i));
+    });
     stats_.iterations = 0;
     stats_.residual = 0.0;
     return;
