@@ -128,10 +128,12 @@ void CellNeighbourList::rebuild(const System& s) {
 namespace {
 // LeesEdwardsBox::minimum_image with the box's reciprocal edge and image offset computed once
 // per pass, and rounding without a libm call, instead of a division and a std::round per
-// component and a floor per pair. For a listed pair, whose minimum image is shorter than the list
-// cutoff (< L/2), r/L lies within cutoff/L of an integer: r * (1/L) rounds to the same integer as
-// r / L, no tie arises (where round-half-even and std::round differ), and the result is bitwise
-// minimum_image's.
+// component and a floor per pair. For a listed pair whose minimum image is shorter than L/2 (every
+// pair when at least three cells fit per side, L >= 3 (range + skin)), r/L lies away from a
+// half-integer: r * (1/L) rounds to the same integer as r / L, no tie arises (where
+// round-half-even and std::round differ), and the result is bitwise minimum_image's. Only in the
+// all-pairs fallback of small boxes can a listed pair reach L/2, where the two images are equally
+// near and either is a minimum image.
 struct ListedPairImage {
   double L, inverse_L, offset;
   explicit ListedPairImage(const LeesEdwardsBox& box)
