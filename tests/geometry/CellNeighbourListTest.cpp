@@ -228,7 +228,8 @@ TEST(CellNeighbourList, MinGapIsTheSmallestSurfaceGap) {
 // the bodies wrapped through a face move). The list must then be bitwise what a refresh of every
 // pair gives: r = minimum_image(x_j - x_i), distance = |r|. A version that skipped the moved
 // pairs fails at the moved body (r stale by its 0.01 a step) and at the wrapped ones (r of the
-// unwrapped positions differs in the last bits).
+// unwrapped positions differs in the last bits); so does a full refresh that sums |r|^2 in
+// another order than Vec3::norm (x^2 + (y^2 + z^2)).
 TEST(CellNeighbourList, AnUpdateAtTheSameStrainRecomputesThePairsOfMovedNodes) {
   auto shape = std::make_shared<shapes::DicolloidShape>(1.0, 0.5, 1.0);
   Scene sc = make_scene(shape, 150, 12.0, 0.3, 11);
