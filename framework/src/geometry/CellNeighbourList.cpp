@@ -227,8 +227,9 @@ void CellNeighbourList::refresh_moved(const System& s) {
 
 double CellNeighbourList::min_gap(const System& s) const {
   double gap = std::numeric_limits<double>::infinity();
+  const auto& nodes = s.shape().nodes();  // once: node_radius() calls into the shape plugin
   for (const auto& pr : list_.pairs())
-    gap = std::min(gap, pr.distance - s.node_radius(pr.node_a) - s.node_radius(pr.node_b));
+    gap = std::min(gap, pr.distance - nodes[pr.node_a].radius - nodes[pr.node_b].radius);
   return gap;
 }
 

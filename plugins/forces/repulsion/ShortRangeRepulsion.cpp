@@ -86,8 +86,9 @@ void ShortRangeRepulsion::add(const System& system, const NodePairList& pairs, d
   const std::size_t m = system.nodes_per_body();
   const auto& off = system.node_offsets();
   // Serial: the pairs inside delta_min are few, and a fixed order keeps sums reproducible.
+  const auto& nodes = system.shape().nodes();  // once: node_radius() calls into the shape plugin
   for (const NodePair& p : pairs.pairs()) {
-    const double gap = p.distance - system.node_radius(p.node_a) - system.node_radius(p.node_b);
+    const double gap = p.distance - nodes[p.node_a].radius - nodes[p.node_b].radius;
     const double f = magnitude(gap, cp, delta_min_, delta_num_, {wall_length_, wall_factor_});
     if (f == 0.0) continue;
     const Vec3 d = p.r / p.distance;

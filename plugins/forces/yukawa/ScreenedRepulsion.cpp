@@ -50,9 +50,10 @@ void ScreenedRepulsion::add(const System& system, const NodePairList& pairs, dou
   if (A == 0.0) return;
   const auto& off = system.node_offsets();
   const std::size_t m = system.nodes_per_body();
+  const auto& nodes = system.shape().nodes();  // once: node_radius() calls into the shape plugin
   for (const NodePair& p : pairs.pairs()) {
     if (p.distance >= cutoff_) continue;
-    const double gap = p.distance - system.node_radius(p.node_a) - system.node_radius(p.node_b);
+    const double gap = p.distance - nodes[p.node_a].radius - nodes[p.node_b].radius;
     const Vec3 fj = A * std::exp(-kappa_ * gap) * (p.r / p.distance);  // pushes j away from i
     add_node_wrench(wrench + 6 * p.body_j, off[p.body_j * m + p.node_b], fj, Vec3::Zero());
     add_node_wrench(wrench + 6 * p.body_i, off[p.body_i * m + p.node_a], -fj, Vec3::Zero());
