@@ -331,6 +331,36 @@ TEST(LubricationPair, CentredGramEqualsTheRowProducts) {
   EXPECT_EQ(checked, 640);
 }
 
+// add_centred_gram (how BodyResistance::add_to puts a sphere pair into R) gives bit for bit what
+// adding centred_gram's blocks gave (or assigning the ij block), starting from random blocks. A
+// version that summed a corner's terms in another order, e.g. (sh li li + pu) P + tw dd as
+// sh li li P + (pu P + tw dd), differs in the last bits here.
+TEST(LubricationPair, AddCentredGramIsAddingTheCentredGramBlocks) {
+  std::mt19937_64 rng(22);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const int checked = for_centred_cases(rng, [&](const CentredCase& k) {
+    const Vec3 d = k.r / k.r.norm();
+    Mat6 ii, jj, ij;
+    LubricationPair::centred_gram(d, k.c, k.w, ii, jj, ij);
+    const Mat6 Rii = Mat6::NullaryExpr([&]() { return u(rng); });
+    const Mat6 Rjj = Mat6::NullaryExpr([&]() { return u(rng); });
+    const Mat6 Rij = Mat6::NullaryExpr([&]() { return u(rng); });
+    for (const bool assign : {false, true}) {
+      Mat6 Aii = Rii, Ajj = Rjj, Aij = Rij;
+      LubricationPair::add_centred_gram(d, k.c, k.w, Aii, Ajj, Aij, assign);
+      const Mat6 ii_sum = Rii + ii, jj_sum = Rjj + jj, ij_sum = Rij + ij;
+      EXPECT_EQ(Aii, ii_sum);
+      EXPECT_EQ(Ajj, jj_sum);
+      if (assign) {
+        EXPECT_EQ(Aij, ij);
+      } else {
+        EXPECT_EQ(Aij, ij_sum);
+      }
+    }
+  });
+  EXPECT_EQ(checked, 640);
+}
+
 // The closed-form pair wrench -w S^T S v and Brownian wrench sqrt(w) S^T beta of a centred pair
 // (BodyResistance's path for spheres: strain forces, stresslets, Brownian forces) against the
 // products of the rows they replace, random velocities and normals; agreement to rounding (1e-14

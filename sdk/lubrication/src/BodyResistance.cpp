@@ -202,9 +202,8 @@ void BodyResistance::add_to(BlockSparseMatrix& A) const {
         A.upper(p.upper) += ij;
     };
     if (const ClosedForm& c = closed_[k]; c.on && !c.offset) {
-      Mat6 ii, jj, ij;
-      LubricationPair::centred_gram(c.d, c.c, c.weight, ii, jj, ij);
-      add(ii, jj, ij);
+      LubricationPair::add_centred_gram(c.d, c.c, c.weight, A.diagonal(p.body_i), A.diagonal(p.body_j),
+                                        A.upper(p.upper), p.opens_block);
     } else {
       add(block_ii_[k], block_jj_[k], block_ij_[k]);
     }

@@ -125,6 +125,35 @@ void LubricationPair::centred_gram(const Vec3& d, const LubricationCoefficients&
   ij.bottomRightCorner<3, 3>() = (sh * li * lj - pu) * P - tw * dd;
 }
 
+void LubricationPair::add_centred_gram(const Vec3& d, const LubricationCoefficients& c, double w, Mat6& Rii,
+                                       Mat6& Rjj, Mat6& Rij, bool assign_ij) {
+  const double sq = w * c.squeeze, sh = w * c.shear, pu = w * c.pump, tw = w * c.twist;
+  const Eigen::Matrix3d dd = d * d.transpose();
+  const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - dd;
+  const Eigen::Matrix3d D = cross_matrix(d);
+  const Eigen::Matrix3d uu = sq * dd + sh * P;
+  const double li = c.lever_i, lj = c.lever_j;
+  Rii.topLeftCorner<3, 3>() += uu;
+  Rii.topRightCorner<3, 3>() += -(sh * li) * D;
+  Rii.bottomLeftCorner<3, 3>() += (sh * li) * D;
+  Rii.bottomRightCorner<3, 3>() += (sh * li * li + pu) * P + tw * dd;
+  Rjj.topLeftCorner<3, 3>() += uu;
+  Rjj.topRightCorner<3, 3>() += (sh * lj) * D;
+  Rjj.bottomLeftCorner<3, 3>() += -(sh * lj) * D;
+  Rjj.bottomRightCorner<3, 3>() += (sh * lj * lj + pu) * P + tw * dd;
+  if (assign_ij) {
+    Rij.topLeftCorner<3, 3>() = -uu;
+    Rij.topRightCorner<3, 3>() = -(sh * lj) * D;
+    Rij.bottomLeftCorner<3, 3>() = -(sh * li) * D;
+    Rij.bottomRightCorner<3, 3>() = (sh * li * lj - pu) * P - tw * dd;
+  } else {
+    Rij.topLeftCorner<3, 3>() += -uu;
+    Rij.topRightCorner<3, 3>() += -(sh * lj) * D;
+    Rij.bottomLeftCorner<3, 3>() += -(sh * li) * D;
+    Rij.bottomRightCorner<3, 3>() += (sh * li * lj - pu) * P - tw * dd;
+  }
+}
+
 Eigen::Matrix<double, 12, 1> LubricationPair::centred_wrench(const Vec3& d, const LubricationCoefficients& c,
                                                              double w,
                                                              const Eigen::Matrix<double, 12, 1>& v) {

@@ -90,6 +90,12 @@ class LubricationPair {
   //   ij = [-c_sq dd - c_sh P, -c_sh l_j D; -c_sh l_i D,  (c_sh l_i l_j - c_pu) P - c_tw dd]
   // About 20 times fewer operations than the Gram products; equal to them to rounding, exactly
   // symmetric (tests/hydro/LubricationPairTest.cpp).
+  // Adds centred_gram's ii and jj to Rii and Rjj, and its ij to Rij (or assigns it, if assign_ij), by
+  // 3 x 3 corners straight from their terms: the same sums, element for element, as adding the
+  // blocks centred_gram returns, without the 6 x 6 temporaries (whose 3-row column halves, stored
+  // separately and read back in pairs across the halves, stalled the additions; bench/README.md).
+  static void add_centred_gram(const Vec3& d, const LubricationCoefficients& c, double w, Mat6& Rii,
+                               Mat6& Rjj, Mat6& Rij, bool assign_ij);
   static void centred_gram(const Vec3& d, const LubricationCoefficients& c, double w, Mat6& ii, Mat6& jj,
                            Mat6& ij);
   // -w S^T S v for centred nodes, the pair's wrench (f_i, t_i, f_j, t_j) for node velocities
