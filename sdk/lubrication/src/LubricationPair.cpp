@@ -103,55 +103,52 @@ void LubricationPair::rows(double a_i, double a_j, const Vec3& r, double mu,
   rows(a_i, a_j, r, mu, options, S, c);
 }
 
-void LubricationPair::centred_gram(const Vec3& d, const LubricationCoefficients& c, double w, Mat6& ii,
-                                   Mat6& jj, Mat6& ij) {
+namespace {
+// The twelve 3 x 3 corners of a centred pair's Gram blocks ii, jj, ij, each handed as it is formed
+// to put_ii / put_jj / put_ij(row, column, value): centred_gram assigns them, add_centred_gram adds
+// them to R's blocks, so both give the same values element for element.
+template <class PutII, class PutJJ, class PutIJ>
+void centred_corners(const Vec3& d, const LubricationCoefficients& c, double w, const PutII& put_ii,
+                     const PutJJ& put_jj, const PutIJ& put_ij) {
   const double sq = w * c.squeeze, sh = w * c.shear, pu = w * c.pump, tw = w * c.twist;
   const Eigen::Matrix3d dd = d * d.transpose();
   const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - dd;
   const Eigen::Matrix3d D = cross_matrix(d);
   const Eigen::Matrix3d uu = sq * dd + sh * P;
   const double li = c.lever_i, lj = c.lever_j;
-  ii.topLeftCorner<3, 3>() = uu;
-  ii.topRightCorner<3, 3>() = -(sh * li) * D;
-  ii.bottomLeftCorner<3, 3>() = (sh * li) * D;
-  ii.bottomRightCorner<3, 3>() = (sh * li * li + pu) * P + tw * dd;
-  jj.topLeftCorner<3, 3>() = uu;
-  jj.topRightCorner<3, 3>() = (sh * lj) * D;
-  jj.bottomLeftCorner<3, 3>() = -(sh * lj) * D;
-  jj.bottomRightCorner<3, 3>() = (sh * lj * lj + pu) * P + tw * dd;
-  ij.topLeftCorner<3, 3>() = -uu;
-  ij.topRightCorner<3, 3>() = -(sh * lj) * D;
-  ij.bottomLeftCorner<3, 3>() = -(sh * li) * D;
-  ij.bottomRightCorner<3, 3>() = (sh * li * lj - pu) * P - tw * dd;
+  put_ii(0, 0, uu);
+  put_ii(0, 3, -(sh * li) * D);
+  put_ii(3, 0, (sh * li) * D);
+  put_ii(3, 3, (sh * li * li + pu) * P + tw * dd);
+  put_jj(0, 0, uu);
+  put_jj(0, 3, (sh * lj) * D);
+  put_jj(3, 0, -(sh * lj) * D);
+  put_jj(3, 3, (sh * lj * lj + pu) * P + tw * dd);
+  put_ij(0, 0, -uu);
+  put_ij(0, 3, -(sh * lj) * D);
+  put_ij(3, 0, -(sh * li) * D);
+  put_ij(3, 3, (sh * li * lj - pu) * P - tw * dd);
+}
+
+auto assign_to(Mat6& M) {
+  return [&M](int r, int c, const auto& v) { M.block<3, 3>(r, c) = v; };
+}
+auto add_to(Mat6& M) {
+  return [&M](int r, int c, const auto& v) { M.block<3, 3>(r, c) += v; };
+}
+}  // namespace
+
+void LubricationPair::centred_gram(const Vec3& d, const LubricationCoefficients& c, double w, Mat6& ii,
+                                   Mat6& jj, Mat6& ij) {
+  centred_corners(d, c, w, assign_to(ii), assign_to(jj), assign_to(ij));
 }
 
 void LubricationPair::add_centred_gram(const Vec3& d, const LubricationCoefficients& c, double w, Mat6& Rii,
                                        Mat6& Rjj, Mat6& Rij, bool assign_ij) {
-  const double sq = w * c.squeeze, sh = w * c.shear, pu = w * c.pump, tw = w * c.twist;
-  const Eigen::Matrix3d dd = d * d.transpose();
-  const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - dd;
-  const Eigen::Matrix3d D = cross_matrix(d);
-  const Eigen::Matrix3d uu = sq * dd + sh * P;
-  const double li = c.lever_i, lj = c.lever_j;
-  Rii.topLeftCorner<3, 3>() += uu;
-  Rii.topRightCorner<3, 3>() += -(sh * li) * D;
-  Rii.bottomLeftCorner<3, 3>() += (sh * li) * D;
-  Rii.bottomRightCorner<3, 3>() += (sh * li * li + pu) * P + tw * dd;
-  Rjj.topLeftCorner<3, 3>() += uu;
-  Rjj.topRightCorner<3, 3>() += (sh * lj) * D;
-  Rjj.bottomLeftCorner<3, 3>() += -(sh * lj) * D;
-  Rjj.bottomRightCorner<3, 3>() += (sh * lj * lj + pu) * P + tw * dd;
-  if (assign_ij) {
-    Rij.topLeftCorner<3, 3>() = -uu;
-    Rij.topRightCorner<3, 3>() = -(sh * lj) * D;
-    Rij.bottomLeftCorner<3, 3>() = -(sh * li) * D;
-    Rij.bottomRightCorner<3, 3>() = (sh * li * lj - pu) * P - tw * dd;
-  } else {
-    Rij.topLeftCorner<3, 3>() += -uu;
-    Rij.topRightCorner<3, 3>() += -(sh * lj) * D;
-    Rij.bottomLeftCorner<3, 3>() += -(sh * li) * D;
-    Rij.bottomRightCorner<3, 3>() += (sh * li * lj - pu) * P - tw * dd;
-  }
+  if (assign_ij)
+    centred_corners(d, c, w, add_to(Rii), add_to(Rjj), assign_to(Rij));
+  else
+    centred_corners(d, c, w, add_to(Rii), add_to(Rjj), add_to(Rij));
 }
 
 Eigen::Matrix<double, 12, 1> LubricationPair::centred_wrench(const Vec3& d, const LubricationCoefficients& c,
