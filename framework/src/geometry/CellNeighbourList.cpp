@@ -151,6 +151,11 @@ struct ListedPairImage {
     r.z() -= nearest(r.z() * inverse_L) * L;
     return r;
   }
+  // One pair from the node positions x (m nodes per body): the scalar form of refresh's lanes.
+  void refresh(NodePair& pr, const std::vector<Vec3>& x, std::size_t m) const {
+    pr.r = (*this)(x[pr.body_j * m + pr.node_b] - x[pr.body_i * m + pr.node_a]);
+    pr.distance = pr.r.norm();
+  }
 };
 }  // namespace
 
@@ -193,11 +198,7 @@ void CellNeighbourList::refresh(const System& s) {
     q.r = Vec3(ox[1], oy[1], oz[1]);
     q.distance = od[1];
   });
-  if (count % 2 != 0) {
-    NodePair& pr = pairs[count - 1];
-    pr.r = image(x[pr.body_j * m + pr.node_b] - x[pr.body_i * m + pr.node_a]);
-    pr.distance = pr.r.norm();
-  }
+  if (count % 2 != 0) image.refresh(pairs[count - 1], x, m);
 }
 
 // Same strain as the last update: a pair of unmoved nodes keeps its r exactly. Typically only
@@ -217,12 +218,8 @@ void CellNeighbourList::refresh_moved(const System& s) {
     return;
   }
   const ListedPairImage image(s.box());
-  for (NodePair& pr : list_.pairs()) {
-    const std::size_t i = pr.body_i * m + pr.node_a, j = pr.body_j * m + pr.node_b;
-    if (!moved_[i] && !moved_[j]) continue;
-    pr.r = image(x[j] - x[i]);
-    pr.distance = pr.r.norm();
-  }
+  for (NodePair& pr : list_.pairs())
+    if (moved_[pr.body_i * m + pr.node_a] || moved_[pr.body_j * m + pr.node_b]) image.refresh(pr, x, m);
 }
 
 double CellNeighbourList::min_gap(const System& s) const {

@@ -276,6 +276,10 @@ MonteCarloReport initialise_monte_carlo(System& s, const MonteCarloOptions& opt,
   const double target_edge = s.box().edge();
   place_on_lattice(s, opt.seed, target_edge);
   HardBodyMonteCarlo mc(s, opt.seed);
+  // True volume fraction in a cubic box of this edge (the current box by default).
+  auto volume_fraction = [&](double edge) {
+    return double(s.size()) * s.shape().volume() / (edge * edge * edge);
+  };
   auto say = [&](const std::string& what) {
     if (!log) return;
     std::ostringstream o;
@@ -292,20 +296,18 @@ MonteCarloReport initialise_monte_carlo(System& s, const MonteCarloOptions& opt,
     if (now - last_line < std::chrono::seconds(30)) return;
     last_line = now;
     std::ostringstream o;
-    o << phase << ", volume fraction " << std::setprecision(4)
-      << double(s.size()) * s.shape().volume() / s.box().volume() << " of " << std::setprecision(4)
-      << double(s.size()) * s.shape().volume() / (target_edge * target_edge * target_edge);
+    o << phase << ", volume fraction " << std::setprecision(4) << volume_fraction(s.box().edge()) << " of "
+      << std::setprecision(4) << volume_fraction(target_edge);
     say(o.str());
   };
   auto check_stop = [&] {
     if (!opt.stop) return;
     const std::string why = opt.stop();
     if (!why.empty())
-      throw Error(
-          "monte carlo start stopped by " + why + " after " + std::to_string(mc.sweeps_done()) +
-          " sweeps (volume fraction " +
-          number_text(std::round(1e4 * double(s.size()) * s.shape().volume() / s.box().volume()) / 1e4) +
-          "); nothing was run");
+      throw Error("monte carlo start stopped by " + why + " after " + std::to_string(mc.sweeps_done()) +
+                  " sweeps (volume fraction " +
+                  number_text(std::round(1e4 * volume_fraction(s.box().edge())) / 1e4) +
+                  "); nothing was run");
   };
   auto check_budget = [&] {
     if (mc.sweeps_done() >= opt.max_sweeps)
@@ -350,7 +352,7 @@ MonteCarloReport initialise_monte_carlo(System& s, const MonteCarloOptions& opt,
   report.sweeps = mc.sweeps_done();
   report.acceptance_translation = mc.acceptance_translation();
   report.acceptance_rotation = mc.acceptance_rotation();
-  report.final_volume_fraction = double(s.size()) * s.shape().volume() / s.box().volume();
+  report.final_volume_fraction = volume_fraction(s.box().edge());
   report.overlaps = mc.count_overlaps();
   report.max_displacement = mc.translation_step();
   return report;
