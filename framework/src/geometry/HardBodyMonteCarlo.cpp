@@ -141,14 +141,26 @@ std::int64_t HardBodyMonteCarlo::sweep() {
       ++tried_t_;
     }
     const Eigen::Matrix3d R = q.toRotationMatrix();
-    // Hard bodies: reject at the first overlap.
-    bool overlap = false;
-    for (std::size_t k = 0; k < m_ && !overlap; ++k) {
-      trial[k] = x + R * nodes[k].position;
-      box.wrap(trial[k]);
-      overlap = node_overlaps(i, trial[k], nodes[k].radius, true).count > 0;
+    bool accept = true;
+    if (overlapping_pairs_ == 0) {
+      // Hard bodies: reject at the first overlap.
+      for (std::size_t k = 0; k < m_ && accept; ++k) {
+        trial[k] = x + R * nodes[k].position;
+        box.wrap(trial[k]);
+        accept = node_overlaps(i, trial[k], nodes[k].radius, true).count == 0;
+      }
+    } else {
+      // Removing a compression's overlaps: the moved body's summed overlap must not grow (zero
+      // stays zero), so the total overlap never grows.
+      const double old_depth =
+          body_overlap_depth(i, &node_x_[i * m_], std::numeric_limits<double>::infinity());
+      for (std::size_t k = 0; k < m_; ++k) {
+        trial[k] = x + R * nodes[k].position;
+        box.wrap(trial[k]);
+      }
+      accept = body_overlap_depth(i, trial, old_depth) <= old_depth;
     }
-    if (overlap) continue;
+    if (!accept) continue;
     pos[i] = x;
     ori[i] = q;
     displacement_[i] += step;
@@ -165,7 +177,15 @@ std::int64_t HardBodyMonteCarlo::sweep() {
   last_accepted_r_ = accepted_r_ - b0;
   ++sweep_count_;
   s_.update_nodes();
+  if (overlapping_pairs_ > 0) overlapping_pairs_ = count_overlaps();
   return accepted;
+}
+
+double HardBodyMonteCarlo::body_overlap_depth(std::size_t body, const Vec3* x, double bound) const {
+  double depth = 0.0;
+  for (std::size_t k = 0; k < m_ && depth <= bound; ++k)
+    depth += node_overlaps(body, x[k], s_.node_radius(k), bound == 0.0).depth;
+  return depth;
 }
 
 void HardBodyMonteCarlo::adapt_steps(double target) {
@@ -178,7 +198,7 @@ void HardBodyMonteCarlo::adapt_steps(double target) {
   adjust(dtheta_, last_tried_r_, last_accepted_r_, std::numbers::pi);
 }
 
-bool HardBodyMonteCarlo::compress_towards(double edge, double max_step) {
+bool HardBodyMonteCarlo::compress_towards(double edge, double max_step, std::size_t allowed_overlaps) {
   auto& box = s_.box();
   const double L = box.edge();
   if (edge >= L) return true;
@@ -190,14 +210,22 @@ bool HardBodyMonteCarlo::compress_towards(double edge, double max_step) {
   CellNeighbourList list;
   list.configure(search, 0.0);
   list.update(s_);
-  double f_touch = -std::numeric_limits<double>::infinity();
+  // The contact factors of the pairs that can touch; the (K+1)-th largest limits the step.
   const auto& off = s_.node_offsets();
+  touching_.clear();
   for (const auto& pr : list.pairs().pairs()) {
     const Vec3 dr = off[pr.body_j * m_ + pr.node_b] - off[pr.body_i * m_ + pr.node_a];
     const double sigma = s_.node_radius(pr.node_a) + s_.node_radius(pr.node_b);
-    f_touch = std::max(f_touch, touching_factor(pr.r - dr, dr, sigma));
+    const double f_pair = touching_factor(pr.r - dr, dr, sigma);
+    if (f_pair > f_floor) touching_.push_back(f_pair);
   }
-  // Go 90 % of the way to the first contact (never exactly to it, so round-off cannot overlap).
+  double f_touch = -std::numeric_limits<double>::infinity();
+  if (touching_.size() > allowed_overlaps) {
+    const auto kth = touching_.begin() + std::ptrdiff_t(allowed_overlaps);
+    std::nth_element(touching_.begin(), kth, touching_.end(), std::greater<>());
+    f_touch = *kth;
+  }
+  // Go 90 % of the way to that contact (never exactly to it, so round-off cannot overlap).
   const double f = std::max(f_floor, f_touch + 0.1 * (1.0 - f_touch));
   const bool reached = f == edge / L;
   const double strain = box.strain();
@@ -209,6 +237,7 @@ bool HardBodyMonteCarlo::compress_towards(double edge, double max_step) {
   }
   s_.update_nodes();
   rebuild_cells();
+  if (allowed_overlaps > 0) overlapping_pairs_ = count_overlaps();
   return reached;
 }
 
@@ -287,9 +316,9 @@ MonteCarloReport initialise_monte_carlo(System& s, const MonteCarloOptions& opt,
       << ", msd " << mc.mean_square_displacement() << ", P2 " << mc.orientation_p2() << ")";
     log(o.str());
   };
-  // A dense or large start can take minutes (8000 spheres at phi 0.5: more than ten, most of it
-  // compressing): a line every 30 s of wall time says where it is (the configuration does not
-  // depend on it).
+  // A dense or large start can take a while (8000 spheres at phi 0.5: 26 s, homonuclear
+  // dicolloids equilibrate slowly): a line every 30 s of wall time says where it is (the
+  // configuration does not depend on it).
   auto last_line = std::chrono::steady_clock::now();
   auto say_now_and_then = [&](const char* phase) {
     const auto now = std::chrono::steady_clock::now();
@@ -315,11 +344,15 @@ MonteCarloReport initialise_monte_carlo(System& s, const MonteCarloOptions& opt,
                   " sweeps (box edge " + number_text(s.box().edge()) + ", target " +
                   number_text(target_edge) + ")");
   };
+  const std::size_t allowed =
+      opt.compression_overlaps > 0.0
+          ? std::max<std::size_t>(1, std::size_t(opt.compression_overlaps * double(s.size())))
+          : 0;
   bool reached = false;
-  while (!reached) {
+  while (!reached || mc.overlapping_pairs() > 0) {
     mc.sweep();
     mc.adapt_steps(opt.target_acceptance);
-    reached = mc.compress_towards(target_edge);
+    if (!reached && mc.overlapping_pairs() == 0) reached = mc.compress_towards(target_edge, 0.02, allowed);
     check_budget();
     check_stop();
     say_now_and_then("still compressing");
