@@ -37,14 +37,27 @@ double brute_distance(const Vec3& d, const LeesEdwardsBox& box) {
   return best;
 }
 
-int brute_overlaps(const System& s) {
+// Overlapping node pairs of different bodies over every pair: how many, and their total depth
+// sum(r_a + r_b - d).
+struct BruteOverlap {
+  int count = 0;
+  double depth = 0.0;
+};
+BruteOverlap brute_overlap(const System& s) {
   const std::size_t m = s.nodes_per_body();
   const auto& x = s.node_positions();
-  int count = 0;
+  BruteOverlap found;
   for (std::size_t p = 0; p < x.size(); ++p)
-    for (std::size_t q = (p / m + 1) * m; q < x.size(); ++q)
-      if (brute_distance(x[q] - x[p], s.box()) < s.node_radius(p % m) + s.node_radius(q % m)) ++count;
-  return count;
+    for (std::size_t q = (p / m + 1) * m; q < x.size(); ++q) {
+      const double depth = s.node_radius(p % m) + s.node_radius(q % m) - brute_distance(x[q] - x[p], s.box());
+      if (depth <= 0.0) continue;
+      ++found.count;
+      found.depth += depth;
+    }
+  return found;
+}
+int brute_overlaps(const System& s) {
+  return brute_overlap(s).count;
 }
 
 void expect_valid(const System& s, const MonteCarloReport& r, double phi) {
@@ -194,18 +207,6 @@ TEST(HardBodyMonteCarlo, HardSphereContactValueMatchesCarnahanStarling) {
   EXPECT_NEAR(mean, g_cs, 3.0 * se);
 }
 
-// Total overlap depth sum(r_a + r_b - d) over overlapping node pairs of different bodies.
-double brute_overlap_depth(const System& s) {
-  const std::size_t m = s.nodes_per_body();
-  const auto& x = s.node_positions();
-  double depth = 0.0;
-  for (std::size_t p = 0; p < x.size(); ++p)
-    for (std::size_t q = (p / m + 1) * m; q < x.size(); ++q)
-      depth +=
-          std::max(0.0, s.node_radius(p % m) + s.node_radius(q % m) - brute_distance(x[q] - x[p], s.box()));
-  return depth;
-}
-
 // A compression step that may create K overlapping pairs creates at most K (and here some), and
 // the sweeps after it never deepen the total overlap and remove it: the move rule (a body's summed
 // overlap must not grow) makes the total non-increasing, a conservation-like bound checked here
@@ -230,12 +231,12 @@ TEST(HardBodyMonteCarlo, CompressionOverlapsAreRemovedWithoutDeepening) {
     EXPECT_EQ(mc.overlapping_pairs(), created);
     EXPECT_GT(created, 0) << "the step must create overlaps for this test to mean anything";
     EXPECT_LE(created, int(allowed));
-    double depth = brute_overlap_depth(*s);
+    double depth = brute_overlap(*s).depth;
     int sweeps = 0;
     while (mc.overlapping_pairs() > 0 && sweeps < 200) {
       mc.sweep();
       ++sweeps;
-      const double now = brute_overlap_depth(*s);
+      const double now = brute_overlap(*s).depth;
       EXPECT_LE(now, depth * (1.0 + 1e-12)) << "sweep " << sweeps << ", c/a " << c;
       depth = now;
       EXPECT_EQ(mc.overlapping_pairs(), brute_overlaps(*s));
