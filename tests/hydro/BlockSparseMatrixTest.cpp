@@ -407,6 +407,41 @@ TEST(BlockIncompleteCholesky, IsExactWithoutFill) {
   EXPECT_LE(res.iterations, 2);
 }
 
+// A loop of bodies joined by stiff blocks is where IC(0) drops fill it needs (a cycle has no
+// elimination order without fill), and near contact such loops leave CG an outlying eigenvalue
+// each (bench/README.md, "Fill in stiff clusters"). Bodies 0-1-2-3 joined by stiff pair
+// resistances (stiffness 300, 1000, 300, each a Gram block t/3 [I, -I]^T [I, -I]) and the loop
+// closed by a softer pair 3-0 (30), on an isotropic 1 per body: the three stiff links join the
+// four bodies into one cluster, whose missing pairs (0, 2) and (1, 3) the factor fills, so it is
+// the exact Cholesky factor. One iteration leaves the single-precision sweeps' rounding,
+// eps_f cond(A) ~ 6e-8 x 1300 (the eigenvalues span 1 to about 1 + 4 x 1000/3), which 1e-4
+// bounds; the second iteration removes it. Shown to fail without the fill (kStiffRatio 1e9):
+// 6 iterations to 1e-12.
+TEST(BlockIncompleteCholesky, IsExactOnALoopOfStiffPairsWithTheClusterFill) {
+  const std::vector<std::pair<std::uint32_t, std::uint32_t>> links{{0, 1}, {1, 2}, {2, 3}, {0, 3}};
+  const double stiffness[] = {300.0, 1000.0, 300.0, 30.0};
+  BlockSparseMatrix A;
+  A.set_pattern(4, links);
+  for (std::uint32_t i = 0; i < 4; ++i) A.diagonal(i) = Mat6::Identity();
+  for (std::size_t k = 0; k < links.size(); ++k) {
+    const double t = stiffness[k] / 3.0;
+    A.diagonal(links[k].first) += t * Mat6::Identity();
+    A.diagonal(links[k].second) += t * Mat6::Identity();
+    A.upper(A.find(links[k].first, links[k].second)) = -t * Mat6::Identity();
+  }
+  const Eigen::VectorXd b = random_vector(A.size(), 47);
+  BlockPCG pcg(fldsim::Preconditioner::IncompleteCholesky);
+  pcg.prepare(A);
+  ASSERT_EQ(pcg.active(), fldsim::Preconditioner::IncompleteCholesky);
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(A.size());
+  const auto one = pcg.solve(A, b.data(), x.data(), 1e-12, 1);
+  EXPECT_LT(one.relative_residual, 1e-4);
+  x.setZero();
+  const auto res = pcg.solve(A, b.data(), x.data(), 1e-12, 10);
+  EXPECT_TRUE(res.converged);
+  EXPECT_LE(res.iterations, 2);
+}
+
 // The same chain with its bodies numbered at random: in that order IC(0) would drop fill (a body
 // eliminated before both its neighbours couples them), but the factor runs in reverse
 // Cuthill-McKee order of the graph (CuthillMcKee.hpp), which lays the chain out end to end, so it
@@ -461,7 +496,7 @@ TEST(BlockIncompleteCholesky, IsExactWithoutFillWhateverTheNumbering) {
 // solver takes Eisenstat D-ILU, which factorises in the bodies' own numbering, and block Jacobi only
 // if that breaks down too. Every numbering of the cycle's bodies is tried (IC(0) picks its own row
 // order from the graph, so which numberings break it is found, not assumed); the matrix is the
-// scalar one times the 6x6 identity, so the block factorisations are the scalar ones. Before the
+// scalar one in the rotational rows (below), so the block factorisations are the scalar ones. Before the
 // fallback a breakdown went straight to block Jacobi (294 against 30 CG iterations per step on 1000
 // spheres near a cubic lattice): the check of `active()` fails that variant.
 TEST(BlockPCG, FallsBackToDiluWhereIncompleteCholeskyBreaksDown) {
@@ -475,12 +510,21 @@ TEST(BlockPCG, FallsBackToDiluWhereIncompleteCholeskyBreaksDown) {
         if (M[i][j] != 0.0) upper.emplace_back(std::min(label[i], label[j]), std::max(label[i], label[j]));
     BlockSparseMatrix A;
     A.set_pattern(4, upper);
+    // The cycle in the rotational rows only: the translational rows are the identity, so no block
+    // is stiff for the cluster fill (whose fill would make this cycle's factor exact) and the
+    // rotational 3 x 3 factorisations are the scalar ones.
+    auto rotational = [](double v, double translational) {
+      Mat6 B = Mat6::Zero();
+      B.topLeftCorner<3, 3>() = translational * Eigen::Matrix3d::Identity();
+      B.bottomRightCorner<3, 3>() = v * Eigen::Matrix3d::Identity();
+      return B;
+    };
     for (std::uint32_t i = 0; i < 4; ++i) {
-      A.diagonal(label[i]) = M[i][i] * Mat6::Identity();
+      A.diagonal(label[i]) = rotational(M[i][i], 1.0);
       for (std::uint32_t j = i + 1; j < 4; ++j)
         if (M[i][j] != 0.0)
           A.upper(A.find(std::min(label[i], label[j]), std::max(label[i], label[j]))) =
-              M[i][j] * Mat6::Identity();
+              rotational(M[i][j], 0.0);
     }
     const bool ic = fldsim::BlockIncompleteCholesky().factorize(A);
     const bool dilu = fldsim::EisenstatDilu().factorize(A);

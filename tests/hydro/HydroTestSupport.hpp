@@ -108,8 +108,9 @@ inline System four_sphere_chain() {
 
 // A ResistanceModel checkpoint (save_state's format: [-2, n, pairs, (i, j)..., diagonal blocks,
 // upper blocks (column-major), 0 numbers of the preconditioner's own state]) whose matrix is the
-// 4-cycle kKershawCycle (the matrix of BlockPCG.FallsBackToDiluWhereIncompleteCholeskyBreaksDown)
-// times the 6x6 identity, with body i of the cycle numbered label[i].
+// 4-cycle kKershawCycle in the rotational rows, the identity in the translational ones (the matrix
+// of BlockPCG.FallsBackToDiluWhereIncompleteCholeskyBreaksDown: no block is stiff for the IC
+// factor's cluster fill), with body i of the cycle numbered label[i].
 inline std::vector<double> four_cycle_checkpoint(const std::array<std::uint32_t, 4>& label) {
   const auto& M = fldsim::hydro::test::kKershawCycle;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> upper;
@@ -124,12 +125,14 @@ inline std::vector<double> four_cycle_checkpoint(const std::array<std::uint32_t,
   for (const auto& [i, j] : upper) state.insert(state.end(), {double(i), double(j)});
   std::array<double, 4> diagonal{};
   for (std::uint32_t i = 0; i < 4; ++i) diagonal[label[i]] = M[i][i];
-  auto block = [&](double v) {
-    const Mat6 b = v * Mat6::Identity();
+  auto block = [&](double v, double translational) {
+    Mat6 b = Mat6::Zero();
+    b.topLeftCorner<3, 3>() = translational * Eigen::Matrix3d::Identity();
+    b.bottomRightCorner<3, 3>() = v * Eigen::Matrix3d::Identity();
     state.insert(state.end(), b.data(), b.data() + 36);
   };
-  for (double d : diagonal) block(d);
-  for (double v : value) block(v);
+  for (double d : diagonal) block(d, 1.0);
+  for (double v : value) block(v, 0.0);
   state.push_back(0.0);
   return state;
 }

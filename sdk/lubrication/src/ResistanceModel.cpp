@@ -99,7 +99,9 @@ void describe_lubrication_params(ParamSchema& s) {
       .at_most(10.0);
   s.choice("preconditioner", std::string("incomplete_cholesky"),
            {"incomplete_cholesky", "eisenstat_dilu", "block_jacobi"},
-           "CG preconditioner: incomplete_cholesky (block IC(0) on the pair pattern, factorised in reverse "
+           "CG preconditioner: incomplete_cholesky (block IC(0) on the pair pattern plus the fill inside "
+           "clusters of bodies in stiff near contact, whose loops IC(0) would leave to the iterations, "
+           "factorised in reverse "
            "Cuthill-McKee order of the pair graph whatever the bodies' numbering; where IC(0) breaks down, "
            "a pivot block not positive definite, that factorisation uses eisenstat_dilu, and the run log "
            "notes it: the first time, then with counts at the 2nd, 4th, 8th, ... time), eisenstat_dilu "
