@@ -152,64 +152,9 @@ bool BlockIncompleteCholesky::restore_order_state(const std::vector<double>& sta
   return true;
 }
 
-// Bodies joined by stiff blocks form clusters (union-find over A's upper blocks); IC(0) is exact on
-// a chain of stiff pairs but drops the fill of a loop (three bodies in mutual near contact), which
-// leaves an outlying eigenvalue per loop for CG. A block is stiff when the trace of its
-// translational part exceeds kStiffRatio times the smaller of its two rows' diagonal traces (a
-// near-contact squeeze dominating the bodies' resistance). Every pair of a cluster of 3 to
-// kMaxCluster bodies missing from A's pattern becomes a fill position.
-void BlockIncompleteCholesky::find_cluster_fill(const BlockSparseMatrix& A, std::vector<std::uint64_t>& out) {
-  out.clear();
-  // At most a quarter of A's blocks (plus a few) as fill, a bound set by A alone (so the fill stays
-  // a function of A) that keeps the time step allocation-free (2 % was measured at kStiffRatio).
-  const std::size_t most = A.col().size() / 4 + 64;
-  linalg::reserve_with_headroom(out, most);
-  const std::size_t n = A.blocks();
-  linalg::resize_grow_only(cluster_parent_, n);
-  for (std::size_t i = 0; i < n; ++i) cluster_parent_[i] = std::uint32_t(i);
-  auto root = [&](std::uint32_t i) {
-    while (cluster_parent_[i] != i) i = cluster_parent_[i] = cluster_parent_[cluster_parent_[i]];
-    return i;
-  };
-  auto trace3 = [](const Mat6& M) { return M(0, 0) + M(1, 1) + M(2, 2); };
-  const auto& a_start = A.row_start();
-  const auto& a_col = A.col();
-  bool any = false;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double di = trace3(A.diagonal(i));
-    for (std::int64_t a = a_start[i]; a < a_start[i + 1]; ++a) {
-      const std::uint32_t j = a_col[std::size_t(a)];
-      if (std::abs(trace3(A.upper(a))) <= kStiffRatio * std::min(di, trace3(A.diagonal(j)))) continue;
-      const std::uint32_t ri = root(std::uint32_t(i)), rj = root(j);
-      if (ri != rj) cluster_parent_[std::max(ri, rj)] = std::min(ri, rj);
-      any = true;
-    }
-  }
-  if (!any) return;
-  // Members grouped by root (a counting sort), then the missing pairs of each cluster.
-  linalg::fill_grow_only(cluster_start_, n + 1, std::uint32_t(0));
-  for (std::size_t i = 0; i < n; ++i) ++cluster_start_[root(std::uint32_t(i)) + 1];
-  for (std::size_t i = 0; i < n; ++i) cluster_start_[i + 1] += cluster_start_[i];
-  linalg::resize_grow_only(cluster_members_, n);
-  linalg::copy_grow_only(fill_scratch_, cluster_start_.begin(), cluster_start_.end() - 1);
-  for (std::size_t i = 0; i < n; ++i)
-    cluster_members_[std::size_t(fill_scratch_[root(std::uint32_t(i))]++)] = std::uint32_t(i);
-  for (std::size_t r = 0; r < n; ++r) {
-    const std::uint32_t b = cluster_start_[r], e = cluster_start_[r + 1];
-    if (e - b < 3 || e - b > kMaxCluster || out.size() + (e - b) * (e - b - 1) / 2 > most) continue;
-    for (std::uint32_t x = b; x < e; ++x)
-      for (std::uint32_t y = x + 1; y < e; ++y) {
-        // Members are in ascending body order (the counting sort keeps it).
-        const std::uint32_t i = cluster_members_[x], j = cluster_members_[y];
-        if (A.find(i, j) < 0) out.push_back((std::uint64_t(i) << 32) | j);
-      }
-  }
-  std::sort(out.begin(), out.end());
-}
-
 bool BlockIncompleteCholesky::factorize(const BlockSparseMatrix& A) {
   const bool reorder = old_of_.size() != A.blocks() || order_age_ >= kReorderEvery;
-  find_cluster_fill(A, cluster_fill_next_);
+  stiff_clusters_.find(A, cluster_fill_next_);
   const bool new_fill = cluster_fill_next_ != cluster_fill_;
   if (new_fill) cluster_fill_.swap(cluster_fill_next_);
   if (reorder || new_fill || pattern_id_ != A.pattern_id() || inv_lower_.size() != A.blocks())

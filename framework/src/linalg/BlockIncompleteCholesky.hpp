@@ -11,12 +11,13 @@
 #include "linalg/Block6Kernels.hpp"
 #include "linalg/CuthillMcKee.hpp"
 #include "linalg/LevelSchedule.hpp"
+#include "linalg/StiffClusterFill.hpp"
 
 namespace fldsim {
 
 // Block incomplete Cholesky IC(0): A ~ U^T U with U block upper triangular on A's own pattern
 // (fill outside it is dropped) plus the fill inside clusters of bodies joined by stiff blocks
-// (find_cluster_fill). Exact for an isolated pair of bodies, and with the cluster fill for an
+// (StiffClusterFill). Exact for an isolated pair of bodies, and with the cluster fill for an
 // isolated cluster, so it removes the 1/gap squeeze coupling of near-contact pairs that block
 // Jacobi leaves to the iterations. Applying it
 // is two block triangular sweeps (about one matrix-vector product). Both the factorisation and the
@@ -45,17 +46,6 @@ class FLDSIM_VISIBLE BlockIncompleteCholesky {
  private:
   using Levels = linalg::Levels;
   void analyse(const BlockSparseMatrix& A, bool reorder);
-  // The fill kept inside stiff clusters: pairs (i, j), i < j in A's numbering, not in A's pattern,
-  // whose bodies belong to one cluster of bodies joined by stiff blocks, into `out` (sorted, as
-  // (i << 32) | j). A function of A's values, found at every factorisation, so that a resumed run
-  // factorises as the uninterrupted one.
-  void find_cluster_fill(const BlockSparseMatrix& A, std::vector<std::uint64_t>& out);
-  // Stiff block: translational trace above this share of the smaller diagonal trace of its rows.
-  // Spheres phi 0.3, N = 27000, Pe 10: 0.5 cut the CG iterations 33.7 -> 23.2 a step with 2 %
-  // more blocks in the factor; 0.3 to 20.2 with 25 % more (each iteration dearer); 0.15 let
-  // clusters merge beyond kMaxCluster (no fill, no gain). bench/README.md, "Fill in stiff clusters".
-  static constexpr double kStiffRatio = 0.5;
-  static constexpr std::uint32_t kMaxCluster = 24;
   bool factor_row(const BlockSparseMatrix& A, std::size_t i);
   void prefetch_factor_inputs(const BlockSparseMatrix& A, std::int64_t p) const;
   void forward_row(std::size_t i, const float* r, float* z) const;
@@ -107,9 +97,10 @@ class FLDSIM_VISIBLE BlockIncompleteCholesky {
   // analyse() scratch, kept so that a pattern change does not allocate.
   std::vector<std::uint32_t> level_scratch_;
   std::vector<std::int64_t> fill_scratch_;
-  // The fill positions of the current factor and of the next factorisation (find_cluster_fill).
+  // The fill positions of the current factor and of the next factorisation (StiffClusterFill,
+  // found at every factorisation from A's values).
+  linalg::StiffClusterFill stiff_clusters_;
   std::vector<std::uint64_t> cluster_fill_, cluster_fill_next_;
-  std::vector<std::uint32_t> cluster_parent_, cluster_members_, cluster_start_;
 };
 
 }  // namespace fldsim
