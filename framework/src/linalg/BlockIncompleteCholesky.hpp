@@ -19,10 +19,10 @@ namespace fldsim {
 // (fill outside it is dropped) plus the fill inside clusters of bodies joined by stiff blocks
 // (StiffClusterFill). Exact for an isolated pair of bodies, and with the cluster fill for an
 // isolated cluster, so it removes the 1/gap squeeze coupling of near-contact pairs that block
-// Jacobi leaves to the iterations. Applying it
-// is two block triangular sweeps (about one matrix-vector product). Both the factorisation and the
-// sweeps are row-oriented ("gather": row i reads only finished rows), scheduled by dependency
-// levels computed once per pattern: rows of one level are independent and run in parallel, a
+// Jacobi leaves to the iterations. Applying it is two block triangular sweeps (about one
+// matrix-vector product). Both the factorisation and the sweeps are row-oriented ("gather": row i
+// reads only finished rows), scheduled by dependency levels computed once per pattern (and fill):
+// rows of one level are independent and run in parallel, a
 // thread waiting (per-row flags, no barrier between levels) only for the rows it reads, and
 // every row is summed in the same fixed order whatever the thread count, so the result does not
 // depend on it. The factor's rows are in reverse Cuthill-McKee order of A's graph, not the bodies'
