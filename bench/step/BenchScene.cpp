@@ -191,6 +191,7 @@ BenchScene::BenchScene(const SceneSpec& spec, const std::vector<ObserverSpec>& o
   settings.integrator = "euler_maruyama";  // with the midpoint drift stage, also at kT = 0
   settings.drift = "midpoint";
   settings.skin = spec.skin;
+  settings.skin_auto = spec.skin_auto;
   settings.seed = spec.seed;
   settings.time_unit = spec.peclet >= 1.0 ? "1/gammadot" : "a^2/D0";
   settings.time_scale = spec.peclet >= 1.0 ? 1.0 / spec.peclet : 1.0;

@@ -38,9 +38,10 @@ struct SceneSpec {
   double dt_paper = 1e-3;   // in 1/gammadot for Pe >= 1, a^2/D0 otherwise (the paper's convention)
   double dt = 0.0;          // internal time step (a^2/D0); 0 = from dt_paper
   double skin = 0.3;
-  int mc_sweeps = 10;     // MC sweeps at the target density after the quick start
-  bool lattice = true;    // spheres: lattice start when possible, else always MC compression
-  std::string cache_dir;  // where configurations are cached ("" = no cache)
+  bool skin_auto = false;  // run.skin: auto
+  int mc_sweeps = 10;      // MC sweeps at the target density after the quick start
+  bool lattice = true;     // spheres: lattice start when possible, else always MC compression
+  std::string cache_dir;   // where configurations are cached ("" = no cache)
   std::uint64_t seed = 42;
   // Order of the bodies' indices (positions and orientations permuted): "" as built, "shuffle"
   // random (the layout a long run drifts to as bodies mix), "cells" along a Z-order curve of cells of

@@ -6,8 +6,8 @@
 //
 // Keys: label, hydro_params (the hydro plugin's parameters as a YAML map, e.g.
 // "{preconditioner: block_jacobi}"), repeats (blocks of `steps` steps; the fastest is reported), shape
-// (sphere|dicolloid), c, n, phi, pe, kT (1|0), hydro, skin, dt (internal, 0 = 1e-3 in the paper's unit),
-// threads, steps, warmup, sweeps (MC sweeps of the quick start), observers
+// (sphere|dicolloid), c, n, phi, pe, kT (1|0), hydro, skin (a number or auto), dt (internal, 0 = 1e-3 in the
+// paper's unit), threads, steps, warmup, sweeps (MC sweeps of the quick start), observers
 // (none|standard|stress1|all1|all100), start (lattice: spheres on a simple cubic lattice when N is a cube,
 // else MC compression | mc: always MC compression), order (bodies renumbered: shuffle | cells), cache
 // (configuration cache directory). Columns: wall and
@@ -106,7 +106,8 @@ int main(int argc, char** argv) {
     spec.brownian = kv["kT"] != "0";
     spec.hydro = kv["hydro"];
     spec.hydro_yaml = kv["hydro_params"];
-    spec.skin = std::stod(kv["skin"]);
+    spec.skin_auto = kv["skin"] == "auto";
+    if (!spec.skin_auto) spec.skin = std::stod(kv["skin"]);
     spec.dt = std::stod(kv["dt"]);
     spec.mc_sweeps = std::stoi(kv["sweeps"]);
     spec.cache_dir = kv["cache"];
@@ -149,11 +150,11 @@ int main(int argc, char** argv) {
     const double observers_ms = (observer_s + h.stresslets) * per;
     const double parts = (h.assemble + h.brownian + h.solve) * per + observers_ms;
     std::printf(
-        "%s,%s,%s,%zu,%g,%g,%s,%s,%s,%g,%d,%d,%.3f,%.3f,%.2f,%.2f,%.3f,%.3f,%.3f,%.3f,%.3f,%lld,%lld,%.1f,%"
+        "%s,%s,%s,%zu,%g,%g,%s,%s,%s,%s,%d,%d,%.3f,%.3f,%.2f,%.2f,%.3f,%.3f,%.3f,%.3f,%.3f,%lld,%lld,%.1f,%"
         "s\n",
         kv["label"].c_str(), spec.shape.c_str(), spec.shape == "dicolloid" ? kv["c"].c_str() : "-",
         spec.count, spec.phi, spec.peclet, spec.brownian ? "1" : "0", spec.hydro.c_str(),
-        kv["observers"].c_str(), spec.skin, threads, steps, wall * per, cpu * per,
+        kv["observers"].c_str(), kv["skin"].c_str(), threads, steps, wall * per, cpu * per,
         double(h.cg_iterations) / steps, double(h.solves) / steps, h.assemble * per, h.brownian * per,
         h.solve * per, observers_ms, wall * per - parts,
         static_cast<long long>(scene.evaluator().stats().pairs), static_cast<long long>(rebuilds),

@@ -208,6 +208,81 @@ TEST(CellNeighbourList, AffineShearKeepsTheListUntilTheStrainUsesTheSkin) {
   // The bodies at |y| ~ 1.4 L moved by 60 * 0.004 * 15 = 3.7 a, nine skins.
 }
 
+// run.skin: auto. Every body takes a random step of up to `step` per update (a random walk, as
+// Brownian motion) and the box shears a little: after every update the list must hold every pair
+// within range (brute force), and after a rebuild exactly the pairs within range + the new skin
+// (the strain's own term, 1e-3 (range + ...) per update, alone would last a list 100-800 updates).
+// With long steps (0.05 a) a 0.3 a list lasts a few updates: the skin must grow until a list lasts
+// about the target (60 updates; the square-root rule is exact for displacements growing as
+// sqrt(k), and the largest of 150 bodies' grows about so: a factor of two either side is allowed);
+// with short steps (0.002 a) it must shrink back to its floor. Scored against brute force; with the
+// rule inverted (skin * sqrt(k / target)) it fails (lists of 1 update, the skin at its floor - shown).
+TEST(CellNeighbourList, AdaptiveSkinKeepsTheListCompleteAndItsLifetimeNearTheTarget) {
+  const double range = 2.5, L = 14.0;
+  Scene sc = make_scene(std::make_shared<shapes::SphereShape>(1.0), 150, L, 0.2, 31);
+  auto& s = *sc.system;
+  CellNeighbourList nl;
+  nl.configure(range, 0.3);
+  nl.adapt_skin(0.3, 2.0, 60);
+  ASSERT_TRUE(nl.update(s));
+  // `updates` updates of random steps of up to `step` and a strain increment `dgamma` carried
+  // affinely by the bodies; returns the mean lifetime of the lists that ended.
+  auto walk = [&](int updates, double step, double dgamma) {
+    int since = 0, ended = 0, total = 0;
+    for (int k = 0; k < updates; ++k) {
+      move_all(sc, step);
+      for (auto& x : s.positions()) x.x() += dgamma * x.y();
+      s.box().set_strain(s.box().strain() + dgamma);
+      s.update_nodes();
+      const bool rebuilt = nl.update(s);
+      ++since;
+      if (rebuilt) {
+        ++ended;
+        total += since;
+        since = 0;
+      }
+      expect_agrees(nl, s, range, rebuilt, range + nl.skin());
+      if (::testing::Test::HasFatalFailure()) return 0.0;
+    }
+    return ended > 0 ? double(total) / ended : double(updates);
+  };
+  walk(300, 0.05, 1e-3);  // long steps: the skin grows from 0.3 a
+  double mean = walk(1200, 0.05, 1e-3);
+  EXPECT_GT(nl.skin(), 1.0);
+  EXPECT_LE(nl.skin(), 2.0);
+  EXPECT_GT(mean, 30.0) << "skin " << nl.skin();
+  EXPECT_LT(mean, 120.0) << "skin " << nl.skin();
+  // Short steps under the same shear: lists would last the target at about 0.2 a (the strain's
+  // term, 1e-3 (range + ...) per update, plus the walk), so the skin falls back to its floor and
+  // a list lasts longer than the target.
+  walk(1500, 0.002, 1e-3);
+  mean = walk(600, 0.002, 1e-3);
+  EXPECT_NEAR(nl.skin(), 0.3, 1e-12);
+  EXPECT_GT(mean, 60.0) << "skin " << nl.skin();
+}
+
+// The adaptive skin never grows past three cells per side (the cell grid would fall back to all
+// pairs) however often the list is rebuilt.
+TEST(CellNeighbourList, AdaptiveSkinKeepsThreeCellsPerSide) {
+  const double range = 2.5, L = 12.0;  // three cells while range + skin <= 4: skin <= 1.5
+  Scene sc = make_scene(std::make_shared<shapes::SphereShape>(1.0), 80, L, 0.0, 41);
+  auto& s = *sc.system;
+  CellNeighbourList nl;
+  nl.configure(range, 0.3);
+  nl.adapt_skin(0.1, 2.0, 60);
+  ASSERT_TRUE(nl.update(s));
+  double largest = 0.0;
+  for (int k = 0; k < 200; ++k) {
+    move_all(sc, 0.3);
+    const bool rebuilt = nl.update(s);
+    largest = std::max(largest, nl.skin());
+    expect_agrees(nl, s, range, rebuilt, range + nl.skin());
+    if (HasFatalFailure()) return;
+  }
+  EXPECT_GT(largest, 1.4);
+  EXPECT_LE(range + largest, L / 3.0);
+}
+
 TEST(CellNeighbourList, MinGapIsTheSmallestSurfaceGap) {
   auto shape = std::make_shared<shapes::DicolloidShape>(1.0, 0.5, 1.0);
   Scene sc = make_scene(shape, 100, 12.0, 0.4, 5);

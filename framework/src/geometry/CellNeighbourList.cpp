@@ -15,7 +15,25 @@ void CellNeighbourList::configure(double range, double skin) {
   range_ = range;
   skin_ = skin;
   built_ = false;
+  target_updates_ = 0;
   list_.set_range(range);
+}
+
+void CellNeighbourList::adapt_skin(double min_skin, double max_skin, int target_updates) {
+  min_skin_ = min_skin;
+  max_skin_ = max_skin;
+  target_updates_ = target_updates;
+}
+
+void CellNeighbourList::choose_skin(const System& s) {
+  const double k = double(std::max<std::int64_t>(updates_since_rebuild_, 1));
+  const double factor = std::clamp(std::sqrt(double(target_updates_) / k), 0.5, 2.0);
+  const double L = s.box().edge();
+  // Three cells per side keep the cell grid (LeesEdwardsCellGrid::configure); a box too small for
+  // that lists all pairs whatever the skin, and then only range + skin < L/2 binds (RunCheck).
+  const double three_cells = L / 3.0 - range_, half_box = 0.5 * L - range_;
+  const double upper = std::min(max_skin_, 0.999999 * (skin_ <= three_cells ? three_cells : half_box));
+  skin_ = std::clamp(skin_ * factor, std::min(min_skin_, upper), upper);
 }
 
 // A pair enters the range only if its separation changed by more than the skin. Writing each
@@ -48,10 +66,16 @@ bool CellNeighbourList::needs_rebuild(const System& s) const {
 }
 
 bool CellNeighbourList::update(const System& s) {
-  const bool rebuilt = needs_rebuild(s);
-  if (rebuilt)
+  ++updates_since_rebuild_;
+  // An adaptive skin is also re-chosen (halved) when a list outlives four targets: displacements
+  // slowed down, and a thinner shell is cheaper to refresh.
+  const bool rebuilt = needs_rebuild(s) || (target_updates_ > 0 && skin_ > min_skin_ &&
+                                            updates_since_rebuild_ > 4 * std::int64_t(target_updates_));
+  if (rebuilt) {
+    if (target_updates_ > 0 && built_) choose_skin(s);
     rebuild(s);
-  else if (s.box().strain() == updated_strain_ && updated_positions_.size() == s.node_count())
+    updates_since_rebuild_ = 0;
+  } else if (s.box().strain() == updated_strain_ && updated_positions_.size() == s.node_count())
     refresh_moved(s);
   else
     refresh(s);

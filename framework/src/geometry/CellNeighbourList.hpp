@@ -23,6 +23,18 @@ class CellNeighbourList {
   // range: node centre distance that must be covered; skin: extra padding. Lists all node pairs
   // of different bodies with distance < range + skin at the last rebuild.
   void configure(double range, double skin);
+  // run.skin: auto. At every rebuild after the first the skin is chosen anew from the number k of
+  // updates the list lasted: skin' = skin sqrt(target_updates / k), at most doubled or halved at
+  // once (also when a list has lasted four targets: displacements slowed down, and a thinner shell
+  // is cheaper to refresh), within [min_skin, max_skin], and never so large that fewer than three cells fit
+  // per side (the cell grid would fall back to all pairs) or that range + skin reaches half the box edge.
+  // Brownian displacements grow as the square root of time, so k then settles near the target:
+  // few rebuilds where steps are long against the skin (dicolloids at Pe <= 1 with dt ~ 1e-3 a^2/D0
+  // rebuilt at almost every step with 0.3 a), a thin skin (fewer listed pairs to refresh) where
+  // they are short. The listed pairs within range, and so every result, do not depend on the skin
+  // (CellNeighbourListTest, SimulationTest).
+  void adapt_skin(double min_skin, double max_skin, int target_updates);
+  double skin() const { return skin_; }
   // Call after System::update_nodes(). Rebuilds when needed (see above), otherwise refreshes r and
   // distance of the listed pairs whose nodes moved since the last update (all of them when the
   // strain changed). Returns true if it rebuilt. No allocation when not rebuilding.
@@ -40,8 +52,14 @@ class CellNeighbourList {
   void remember_positions(const System& s);
   void add_pair(const System& s, std::size_t p, std::size_t q, const Vec3& r);
 
+  void choose_skin(const System& s);
+
   double range_ = 0.0, skin_ = 0.0;
   bool built_ = false;
+  // Adaptive skin (adapt_skin); off when target_updates_ is 0.
+  double min_skin_ = 0.0, max_skin_ = 0.0;
+  int target_updates_ = 0;
+  std::int64_t updates_since_rebuild_ = 0;
   std::int64_t rebuilds_ = 0;
   NodePairList list_;
   // State at the last rebuild.

@@ -125,8 +125,12 @@ ParamSchema run_schema() {
       .less(1e-3);
   s.number("skin", 0.3, "a",
            "neighbour-list skin: the list is rebuilt when the two largest node displacements (less the "
-           "affine shear), plus the strain times the pair range, exceed it")
-      .greater(0.0);
+           "affine shear), plus the strain times the pair range, exceed it; `auto` (the default) starts "
+           "at 0.3 a and rescales it at every rebuild so that a list lasts about 60 updates (20 "
+           "Euler-Maruyama steps), between 0.3 and 2 a. Results do not depend on it (bench/README.md)")
+      .greater(0.0)
+      .or_word("auto")
+      .default_value = std::string("auto");
   s.number("checkpoint_every", 0.0, "time_unit", "write a checkpoint this often (0 = only at the end)")
       .at_least(0.0);
   s.choice("progress", "auto", {"auto", "on", "off"},
@@ -467,7 +471,8 @@ Experiment parse_experiment(YAML::Node root, const std::string& file,
     ex.brownian_stress = rp.text("brownian_stress");
     ex.brownian_stress_delta = rp.number("brownian_stress_delta");
     ex.brownian_stress_tolerance = rp.number("brownian_stress_tolerance");
-    ex.skin = rp.number("skin");
+    ex.skin_auto = std::holds_alternative<std::string>(rp.values().at("skin"));
+    if (!ex.skin_auto) ex.skin = rp.number("skin");
     ex.checkpoint_every = rp.number("checkpoint_every");
     ex.threads = rp.integer("threads");
     ex.progress = rp.text("progress");

@@ -61,8 +61,9 @@ struct Experiment {
   std::string brownian_stress = "random_difference";  // random_difference | midpoint
   double brownian_stress_delta = 1e-4;                // a
   double brownian_stress_tolerance = 1e-8;            // the probe's solve tolerance
-  double skin = 0.3;
-  double checkpoint_every = 0.0;  // in time_unit; 0 = only at the end
+  double skin = 0.3;                                  // a: the fixed skin, or where skin: auto starts
+  bool skin_auto = true;                              // run.skin: auto (CellNeighbourList::adapt_skin)
+  double checkpoint_every = 0.0;                      // in time_unit; 0 = only at the end
   std::int64_t threads = 0;
   std::string progress = "auto";  // auto | on | off: a default `progress` observer (RunExperiment)
 

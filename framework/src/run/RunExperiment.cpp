@@ -10,6 +10,7 @@
 #include <ostream>
 #include <sstream>
 
+#include "config/NumberText.hpp"
 #include "config/YamlValidation.hpp"
 #include "io/Checkpoint.hpp"
 #include "io/Hdf5ResultSink.hpp"
@@ -139,14 +140,15 @@ int run_experiment(const Experiment& ex, const PluginRegistry& registry, const R
   log << "done: " << done << " steps in " << format_time(loop_s) << " ("
       << (done > 0 ? std::to_string(1000.0 * loop_s / double(done)) : std::string("-")) << " ms/step, "
       << (done > 0 ? double(sim->cg_iterations_taken()) / double(done) : 0.0)
-      << " CG iterations/step (all solves), " << rebuilds << " neighbour rebuilds); total "
-      << format_time(wall_s) << "\n"
+      << " CG iterations/step (all solves), " << rebuilds << " neighbour rebuilds"
+      << (ex.skin_auto ? ", skin auto: now " + log_number(sim->neighbour_skin()) + " a" : std::string())
+      << "); total " << format_time(wall_s) << "\n"
       << "steps: " << sim->step_report() << "\n"
       << "results: " << output << "   (fldsim summary " << output << "; /usr/bin/python3 tools/plot_run.py "
       << output << ")\ncheckpoint: " << checkpoint_path << "\n";
   // Frequent rebuilds mean the nodes' Brownian steps are comparable to the skin (the affine shear
   // is already allowed for): a larger skin trades more listed pairs for fewer rebuilds.
-  if (done >= 100 && 2 * rebuilds > done)
+  if (!ex.skin_auto && done >= 100 && 2 * rebuilds > done)
     log << "hint: the neighbour list was rebuilt " << rebuilds << " times in " << done
         << " steps; the Brownian steps are large against run.skin = " << ex.skin
         << " a, and a larger skin (say " << 2.0 * ex.skin << ") may be faster\n";

@@ -21,6 +21,15 @@ const char* const kStressStartKey = "run.stress_start";  // the stress solve's C
 const char* const kHydroStateKey = "hydro.state";        // HydroModel::save_state (e.g. its preconditioner)
 const char* const kProbeStateKey = "hydro.probe_state";  // the same of the stress probe's own model
 
+// run.skin: auto (CellNeighbourList::adapt_skin): a list should last about 60 updates, 20 steps of
+// Euler-Maruyama with the midpoint drift (three updates a step, one at the state of the last).
+// Measured on N = 1000 scenes of the study (bench/README.md, "The neighbour skin"): lists that lasted
+// one to three steps cost fused dumbbells at Pe 1 and dt 1e-3 a^2/D0 10-20 % of a step, while a skin
+// of 1.2 a cost spheres at Pe 10 (lists of 100 steps) nothing measurable. The floor is the fixed
+// default, 0.3 a: thinner shells measured no faster (Pe 1000, free draining at dt 1e-5).
+constexpr double kMinAutoSkin = 0.3, kMaxAutoSkin = 2.0;
+constexpr int kAutoSkinUpdates = 60;
+
 // The bodies' part of a checkpoint; the one place that knows which System fields a restart sets.
 void place_checkpoint_bodies(System& sys, const Checkpoint& c, const std::string& source) {
   if (c.positions.size() != sys.size())
@@ -104,6 +113,7 @@ SimulationSettings settings_of(const Experiment& ex, const UserTimeUnit& unit, T
   s.drift = ex.drift;
   s.probe_delta = ex.brownian_stress_delta;
   s.skin = ex.skin;
+  s.skin_auto = ex.skin_auto;
   s.seed = std::uint64_t(ex.seed);
   s.time_unit = unit.name;
   s.time_scale = unit.scale;
@@ -174,6 +184,7 @@ Simulation::Simulation(SimulationParts parts, SimulationSettings settings, Resul
   // an overlap when a rebuild lists it already deep, which no shorter step can undo.
   if (range_ <= 0.0) settings_.guard.max_overlap = std::numeric_limits<double>::infinity();
   list_.configure(range_, settings_.skin);
+  if (settings_.skin_auto) list_.adapt_skin(kMinAutoSkin, kMaxAutoSkin, kAutoSkinUpdates);
   sys.update_nodes();
   list_.update(sys);
 
@@ -215,7 +226,8 @@ Simulation::Simulation(SimulationParts parts, SimulationSettings settings, Resul
     log_ << "; guard: overlaps allowed (no pair interaction)";
   else
     log_ << "; guard: overlap > " << settings_.guard.max_overlap << " a rejects a step";
-  log_ << "; pair range " << range_ << " a + skin " << settings_.skin << " a\n"
+  log_ << "; pair range " << range_ << " a + skin " << (settings_.skin_auto ? "auto, from " : "")
+       << settings_.skin << " a\n"
        << "threads: " << settings_.threads.threads << " (" << settings_.threads.reason << ")\n";
   for (const auto& w : settings_.threads.warnings) log_ << "warning: " << w << "\n";
   for (const auto& s : skipped_) log_ << "skipped: " << s << "\n";
@@ -385,6 +397,9 @@ std::int64_t Simulation::cg_iterations_taken() const {
 }
 std::int64_t Simulation::rebuilds_taken() const {
   return trial_ ? list_.rebuilds() - first_rebuilds_ : 0;
+}
+double Simulation::neighbour_skin() const {
+  return list_.skin();
 }
 
 }  // namespace fldsim

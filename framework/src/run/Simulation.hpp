@@ -59,6 +59,7 @@ struct SimulationSettings {
   std::string integrator = "auto";   // auto (Euler-Maruyama if Brownian, else RK3) | euler_maruyama | rk3
   std::string drift = "midpoint";    // midpoint | none
   double skin = 0.3;                 // neighbour-list skin, a
+  bool skin_auto = false;            // run.skin: auto: rescaled at every rebuild (CellNeighbourList)
   double probe_delta = 1e-4;         // run.brownian_stress_delta (a), with parts.probe_hydro
   std::uint64_t seed = 42;           // Brownian noise
   std::string time_unit = "a^2/D0";  // the user's time unit (RunInfo)
@@ -125,6 +126,8 @@ class Simulation {
   std::int64_t steps_taken() const;
   std::int64_t cg_iterations_taken() const;
   std::int64_t rebuilds_taken() const;
+  // The neighbour list's skin now (a; it changes with run.skin: auto).
+  double neighbour_skin() const;
 
  private:
   void start_stepping();  // thread trial and counters, at the first step()
