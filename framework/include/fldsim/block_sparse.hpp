@@ -26,6 +26,10 @@ class FLDSIM_VISIBLE BlockSparseMatrix {
   // *this = other, reusing this matrix's storage (grown with headroom, never shrunk), so that a
   // model keeping a copy of R at every assembly does not allocate in the time step (API 5.4).
   void copy_from(const BlockSparseMatrix& other);
+  // Takes other's pattern (and pattern_id) but not its values, which are left as they were: for a
+  // model that writes every block of the pattern at each assembly into one of two matrices it
+  // alternates between (API 5.7).
+  void copy_pattern_from(const BlockSparseMatrix& other);
   Mat6& diagonal(std::size_t i) { return diag_[i]; }
   const Mat6& diagonal(std::size_t i) const { return diag_[i]; }
   // Index of the stored upper block (i, j), i < j; -1 if not in the pattern.

@@ -65,6 +65,16 @@ void BlockIncompleteCholesky::analyse(const BlockSparseMatrix& A, bool reorder) 
   inv_lower_.resize(n);
   linalg::resize_grow_only(permuted_r_, 6 * n);
   linalg::resize_grow_only(permuted_z_, 6 * n);
+  // The dependency levels serve only the multi-threaded factorisation and sweeps (one thread runs
+  // the rows in order): computed there, when first needed after a new pattern (at N = 1000 the
+  // pattern changes at nearly every assembly, and the two schedules were half of analyse()).
+  levels_ready_ = false;
+  pattern_id_ = A.pattern_id();
+}
+
+void BlockIncompleteCholesky::schedule_levels() {
+  if (levels_ready_) return;
+  const std::size_t n = inv_lower_.size();
   // Forward (and factorisation): row i needs the rows k < i with a block (k, i).
   linalg::schedule(
       n, false,
@@ -79,7 +89,7 @@ void BlockIncompleteCholesky::analyse(const BlockSparseMatrix& A, bool reorder) 
         for (std::int64_t a = row_start_[i]; a < row_start_[i + 1]; ++a) depend(col_[a]);
       },
       backward_, level_scratch_, fill_scratch_);
-  pattern_id_ = A.pattern_id();
+  levels_ready_ = true;
 }
 
 // Row i of U (in the factor's order) from the finished rows k < i (left-looking IC(0) restricted to
@@ -172,6 +182,7 @@ bool BlockIncompleteCholesky::factorize(const BlockSparseMatrix& A) {
   } else {
     // By levels without barriers, as in apply(): a row waits only for the rows it reads. A row
     // whose pivot fails is still published (its blocks are not used: factorize() returns false).
+    schedule_levels();
     std::atomic<bool> good{true};
     std::atomic<std::uint64_t>* done = flags_.rows(std::size_t(n));
     const std::uint64_t epoch = flags_.epochs(1);

@@ -40,12 +40,19 @@ class FLDSIM_VISIBLE BlockIncompleteCholesky {
   // Restores order_state() output for n rows before the next factorize(); false if malformed.
   bool restore_order_state(const std::vector<double>& state, std::size_t n);
   // Dependency levels of the forward and backward sweeps (each level is one parallel step).
-  std::size_t forward_levels() const { return forward_.levels(); }
-  std::size_t backward_levels() const { return backward_.levels(); }
+  std::size_t forward_levels() {
+    schedule_levels();
+    return forward_.levels();
+  }
+  std::size_t backward_levels() {
+    schedule_levels();
+    return backward_.levels();
+  }
 
  private:
   using Levels = linalg::Levels;
   void analyse(const BlockSparseMatrix& A, bool reorder);
+  void schedule_levels();  // forward_ and backward_ for the current pattern, if not yet done
   bool factor_row(const BlockSparseMatrix& A, std::size_t i);
   void prefetch_factor_inputs(const BlockSparseMatrix& A, std::int64_t p) const;
   void forward_row(std::size_t i, const float* r, float* z) const;
@@ -80,6 +87,7 @@ class FLDSIM_VISIBLE BlockIncompleteCholesky {
   // apply()'s r and z in the factor's order, in single precision (the sweeps' arithmetic).
   mutable std::vector<float> permuted_r_, permuted_z_;
   Levels forward_, backward_;
+  bool levels_ready_ = false;  // forward_ and backward_ are the current pattern's
   // The factorisation runs in double: inv_lower_ = (U_ii^T)^-1 (lower triangular) and upper_ =
   // U_ij (i < j, laid out as A's upper blocks).
   std::vector<Mat6> inv_lower_, upper_;

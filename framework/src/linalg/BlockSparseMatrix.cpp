@@ -62,6 +62,18 @@ void BlockSparseMatrix::copy_from(const BlockSparseMatrix& other) {
   pattern_id_ = other.pattern_id_;
 }
 
+void BlockSparseMatrix::copy_pattern_from(const BlockSparseMatrix& other) {
+  if (this == &other) return;
+  linalg::resize_grow_only(diag_, other.diag_.size());
+  linalg::copy_grow_only(row_start_, other.row_start_);
+  linalg::copy_grow_only(col_, other.col_);
+  linalg::resize_grow_only(values_, other.values_.size());
+  linalg::copy_grow_only(col_start_, other.col_start_);
+  linalg::copy_grow_only(by_col_, other.by_col_);
+  linalg::copy_grow_only(by_col_row_, other.by_col_row_);
+  pattern_id_ = other.pattern_id_;
+}
+
 void BlockSparseMatrix::set_zero() {
   for (auto& d : diag_) d.setZero();
   for (auto& v : values_) v.setZero();

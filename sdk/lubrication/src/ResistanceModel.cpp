@@ -206,6 +206,8 @@ std::vector<std::string> ResistanceModel::configure(const System& system, const 
   lub_ = BodyResistance(settings_.lub);
   const std::size_t n = system.size();
   A_.set_pattern(n, {});
+  pairs_pattern_ = A_.pattern_id();
+  current_is_source_ = false;
   has_factor_ = false;
   strain_force_.assign(6 * n, 0.0);
   rhs_.assign(6 * n, 0.0);
@@ -223,10 +225,22 @@ void ResistanceModel::assemble(const System& system, const NodePairList& pairs) 
   const std::size_t n = system.size();
   const bool shear = request_.shear && system.physics().shear_rate != 0.0;
   iso_.update(system, E_, shear);
+  current_is_source_ = false;
   if (settings_.lubrication && (lub_.update(system, pairs) || A_.blocks() != n)) {
     lub_.body_pairs(body_pairs_);
     A_.set_pattern(n, body_pairs_);
     lub_.bind(A_);
+    pairs_pattern_ = A_.pattern_id();
+  } else if (A_.pattern_id() != pairs_pattern_) {
+    // A_ held the factor's older source (swapped below): the current pattern is in the other
+    // matrix, which the last assembly wrote (or, after a restore, is rebuilt from the pair list).
+    if (factor_source_.pattern_id() == pairs_pattern_) {
+      A_.copy_pattern_from(factor_source_);
+    } else {
+      A_.set_pattern(n, body_pairs_);
+      lub_.bind(A_);
+      pairs_pattern_ = A_.pattern_id();
+    }
   }
   // No zeroing of R (it was 10 % of a sphere assembly, bench/README.md): the diagonal is assigned
   // here and lub_.add_to writes every off-diagonal block of its pattern (without lubrication the
@@ -244,12 +258,13 @@ void ResistanceModel::assemble(const System& system, const NodePairList& pairs) 
     // only while R has moved little: with a gap floor of 1e-5 a the 1/h squeeze terms change by
     // O(1) within dt/2 and a stale factor costs more iterations than a new one (bench/README.md).
     // The matrix it was built from is kept (factor_source_) for checkpoints: restore_state
-    // rebuilds the same factor from it.
+    // rebuilds the same factor from it. It is this R: the two matrices swap roles.
     if (!reuse_factor()) {
-      factor_source_.copy_from(A_);
+      std::swap(A_, factor_source_);
+      current_is_source_ = true;
       factorise();
     }
-    pcg_.bind(A_);  // the values CG's products use (single precision where R is large)
+    pcg_.bind(current());  // the values CG's products use (single precision where R is large)
   }
   stats_.pairs = std::int64_t(lub_.size());
 }
@@ -436,7 +451,7 @@ void ResistanceModel::solve(const System& system, const double* F, double* dU) {
     stats_.residual = 0.0;
     return;
   }
-  const auto result = pcg_.solve(A_, rhs_.data(), dU, settings_.tolerance, settings_.max_iterations);
+  const auto result = pcg_.solve(current(), rhs_.data(), dU, settings_.tolerance, settings_.max_iterations);
   stats_.iterations = result.iterations;
   stats_.residual = result.relative_residual;
   if (!result.converged) {

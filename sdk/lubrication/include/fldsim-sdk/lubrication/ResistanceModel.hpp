@@ -74,7 +74,7 @@ class ResistanceModel : public HydroModel, public RunNotes {
   std::vector<std::string> take_notes() override;
 
   // For tests: the assembled R_FU and R_FE:E_inf.
-  const BlockSparseMatrix& resistance() const { return A_; }
+  const BlockSparseMatrix& resistance() const { return current(); }
   const std::vector<double>& strain_force() const { return strain_force_; }
   const BodyResistance& lubrication() const { return lub_; }
   // The preconditioner of the last factorisation (settings' choice, or the fallback it needed).
@@ -92,8 +92,13 @@ class ResistanceModel : public HydroModel, public RunNotes {
   std::vector<std::pair<std::uint32_t, std::uint32_t>> body_pairs_;  // pattern scratch
   SolveStats stats_;
   // The matrix the current preconditioner was built from (kept for the reuse test and for
-  // checkpoints).
+  // checkpoints). A new factor is built from the R just assembled by swapping the two matrices
+  // (no copy of R: at N = 64000 that was 2 x 112 MB of memory traffic a step); the next assembly
+  // then writes into A_, which gets the current pattern from factor_source_ if it had an older one.
   BlockSparseMatrix factor_source_;
+  bool current_is_source_ = false;   // the last assembly's R is factor_source_ (swapped), else A_
+  std::uint64_t pairs_pattern_ = 0;  // pattern_id of the current pair list's pattern
+  const BlockSparseMatrix& current() const { return current_is_source_ ? factor_source_ : A_; }
   mutable std::vector<double> row_change_;  // reuse_factor() scratch (EisenstatDilu)
   bool has_factor_ = false;
   bool reuse_factor() const;
