@@ -89,6 +89,48 @@ TEST(BlockSparseMatrix, PatternFindsStoredBlocksOnly) {
   EXPECT_NE(A.find(0, 1), A.find(0, 2));
 }
 
+// The pattern does not depend on the order of the pairs given: sorted, grouped by row with each row
+// in two ascending runs and a duplicate (as the node pairs of dicolloids arrive; set_pattern then
+// sorts only within rows), or shuffled whole. set_pattern zeroes the values, and
+// set_pattern_for_overwrite builds the same pattern without touching them.
+TEST(BlockSparseMatrix, PatternIsTheSameForAnyOrderOfThePairs) {
+  std::mt19937_64 rng(8);
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> sorted;
+  for (std::uint32_t i = 0; i < 40; ++i)
+    for (std::uint32_t j = i + 1; j < 40; ++j)
+      if (rng() % 5 == 0) sorted.emplace_back(i, j);
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> grouped, shuffled = sorted;
+  for (std::size_t a = 0; a < sorted.size();) {  // each row: odd columns, then even ones, one twice
+    std::size_t b = a;
+    while (b < sorted.size() && sorted[b].first == sorted[a].first) ++b;
+    for (int parity : {1, 0})
+      for (std::size_t k = a; k < b; ++k)
+        if (int(sorted[k].second % 2) == parity) grouped.push_back(sorted[k]);
+    grouped.push_back(sorted[a]);
+    a = b;
+  }
+  ASSERT_FALSE(std::is_sorted(grouped.begin(), grouped.end()));
+  std::shuffle(shuffled.begin(), shuffled.end(), rng);
+  BlockSparseMatrix reference, from_grouped, from_shuffled, overwritten;
+  reference.set_pattern(40, sorted);
+  from_grouped.set_pattern(40, grouped);
+  from_shuffled.set_pattern(40, shuffled);
+  for (const BlockSparseMatrix* m : {&from_grouped, &from_shuffled}) {
+    EXPECT_EQ(m->row_start(), reference.row_start());
+    EXPECT_EQ(m->col(), reference.col());
+    EXPECT_EQ(m->by_col(), reference.by_col());
+  }
+  overwritten.set_pattern(40, sorted);
+  for (std::size_t i = 0; i < 40; ++i) overwritten.diagonal(i).setConstant(3.0);
+  for (std::size_t k = 0; k < sorted.size(); ++k) overwritten.upper(std::int64_t(k)).setConstant(7.0);
+  overwritten.set_pattern_for_overwrite(40, grouped);  // same pattern: the values stay
+  EXPECT_EQ(overwritten.col(), reference.col());
+  EXPECT_EQ(overwritten.upper(0)(0, 0), 7.0);
+  EXPECT_EQ(overwritten.diagonal(39)(5, 5), 3.0);
+  overwritten.set_pattern(40, shuffled);
+  EXPECT_TRUE(overwritten.dense().isZero(0.0));
+}
+
 TEST(BlockSparseMatrix, MultiplyEqualsDenseProduct) {
   const BlockSparseMatrix A = random_spd(40, 0.1, 7);
   const Eigen::MatrixXd D = A.dense();

@@ -19,6 +19,11 @@ class FLDSIM_VISIBLE BlockSparseMatrix {
   // Set the pattern: n block rows and the (i < j) block pairs that may be non-zero (duplicates
   // allowed). Values are zeroed.
   void set_pattern(std::size_t n, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& upper);
+  // set_pattern() without zeroing: the values are undefined until written, for a model that writes
+  // every block of the pattern at each assembly (at N = 64000 the zeroing was a pass over R's 56 MB
+  // at nearly every assembly; API 5.7).
+  void set_pattern_for_overwrite(std::size_t n,
+                                 const std::vector<std::pair<std::uint32_t, std::uint32_t>>& upper);
   std::size_t blocks() const { return diag_.size(); }
   std::size_t size() const { return 6 * diag_.size(); }
 

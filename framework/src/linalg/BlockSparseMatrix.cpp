@@ -27,14 +27,35 @@ void set_wide_kernels(bool on) {
 
 void BlockSparseMatrix::set_pattern(std::size_t n,
                                     const std::vector<std::pair<std::uint32_t, std::uint32_t>>& upper) {
+  set_pattern_for_overwrite(n, upper);
+  std::fill(diag_.begin(), diag_.end(), Mat6(Mat6::Zero()));
+  std::fill(values_.begin(), values_.end(), Mat6(Mat6::Zero()));
+}
+
+void BlockSparseMatrix::set_pattern_for_overwrite(
+    std::size_t n, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& upper) {
   using linalg::resize_grow_only;
   static std::atomic<std::uint64_t> patterns{0};
   pattern_id_ = ++patterns;
-  diag_.assign(n, Mat6::Zero());
+  resize_grow_only(diag_, n);
   // Sort and deduplicate the (i, j) pairs: rows in order, columns ascending within a row.
   linalg::copy_grow_only(sorted_, upper);
-  // Callers usually pass the pairs in order already (a sorted neighbour list): then no sort.
-  if (!std::is_sorted(sorted_.begin(), sorted_.end())) std::sort(sorted_.begin(), sorted_.end());
+  // Callers usually pass the pairs in order already (a sorted neighbour list): then no sort. Node
+  // pairs of dicolloids come grouped by row (body i) but with one ascending run per node of i:
+  // then only each row is sorted (a few entries), not the whole list.
+  if (!std::is_sorted(sorted_.begin(), sorted_.end())) {
+    const bool grouped = std::is_sorted(sorted_.begin(), sorted_.end(),
+                                        [](const auto& u, const auto& v) { return u.first < v.first; });
+    if (grouped) {
+      for (auto row = sorted_.begin(); row != sorted_.end();) {
+        auto end = std::find_if(row, sorted_.end(), [&](const auto& p) { return p.first != row->first; });
+        if (!std::is_sorted(row, end)) std::sort(row, end);
+        row = end;
+      }
+    } else {
+      std::sort(sorted_.begin(), sorted_.end());
+    }
+  }
   sorted_.erase(std::unique(sorted_.begin(), sorted_.end()), sorted_.end());
   const std::size_t nnz = sorted_.size();
 
@@ -43,7 +64,7 @@ void BlockSparseMatrix::set_pattern(std::size_t n,
   for (const auto& [i, j] : sorted_) ++row_start_[i + 1];
   for (std::size_t i = 0; i < n; ++i) row_start_[i + 1] += row_start_[i];
   for (std::size_t k = 0; k < nnz; ++k) col_[k] = sorted_[k].second;
-  linalg::fill_grow_only(values_, nnz, Mat6(Mat6::Zero()));
+  resize_grow_only(values_, nnz);
 
   // Transposed index: for column j, the stored blocks (i, j) in increasing i, so the lower part of a
   // row is summed in a fixed order.

@@ -228,7 +228,7 @@ void ResistanceModel::assemble(const System& system, const NodePairList& pairs) 
   current_is_source_ = false;
   if (settings_.lubrication && (lub_.update(system, pairs) || A_.blocks() != n)) {
     lub_.body_pairs(body_pairs_);
-    A_.set_pattern(n, body_pairs_);
+    A_.set_pattern_for_overwrite(n, body_pairs_);
     lub_.bind(A_);
     pairs_pattern_ = A_.pattern_id();
   } else if (A_.pattern_id() != pairs_pattern_) {
@@ -237,7 +237,7 @@ void ResistanceModel::assemble(const System& system, const NodePairList& pairs) 
     if (factor_source_.pattern_id() == pairs_pattern_) {
       A_.copy_pattern_from(factor_source_);
     } else {
-      A_.set_pattern(n, body_pairs_);
+      A_.set_pattern_for_overwrite(n, body_pairs_);
       lub_.bind(A_);
       pairs_pattern_ = A_.pattern_id();
     }
