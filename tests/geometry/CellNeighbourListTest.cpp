@@ -208,6 +208,14 @@ TEST(CellNeighbourList, AffineShearKeepsTheListUntilTheStrainUsesTheSkin) {
   // The bodies at |y| ~ 1.4 L moved by 60 * 0.004 * 15 = 3.7 a, nine skins.
 }
 
+// A list with the adaptive skin of run.skin: auto (from 0.3 a, at most 2 a, lists of about 60
+// updates), built once.
+void start_adaptive(CellNeighbourList& nl, const System& s, double range, double min_skin) {
+  nl.configure(range, 0.3);
+  nl.adapt_skin(min_skin, 2.0, 60);
+  ASSERT_TRUE(nl.update(s));
+}
+
 // run.skin: auto. Every body takes a random step of up to `step` per update (a random walk, as
 // Brownian motion) and the box shears a little: after every update the list must hold every pair
 // within range (brute force), and after a rebuild exactly the pairs within range + the new skin
@@ -222,9 +230,7 @@ TEST(CellNeighbourList, AdaptiveSkinKeepsTheListCompleteAndItsLifetimeNearTheTar
   Scene sc = make_scene(std::make_shared<shapes::SphereShape>(1.0), 150, L, 0.2, 31);
   auto& s = *sc.system;
   CellNeighbourList nl;
-  nl.configure(range, 0.3);
-  nl.adapt_skin(0.3, 2.0, 60);
-  ASSERT_TRUE(nl.update(s));
+  start_adaptive(nl, s, range, 0.3);
   // `updates` updates of random steps of up to `step` and a strain increment `dgamma` carried
   // affinely by the bodies; returns the mean lifetime of the lists that ended.
   auto walk = [&](int updates, double step, double dgamma) {
@@ -268,9 +274,7 @@ TEST(CellNeighbourList, AdaptiveSkinKeepsThreeCellsPerSide) {
   Scene sc = make_scene(std::make_shared<shapes::SphereShape>(1.0), 80, L, 0.0, 41);
   auto& s = *sc.system;
   CellNeighbourList nl;
-  nl.configure(range, 0.3);
-  nl.adapt_skin(0.1, 2.0, 60);
-  ASSERT_TRUE(nl.update(s));
+  start_adaptive(nl, s, range, 0.1);
   double largest = 0.0;
   for (int k = 0; k < 200; ++k) {
     move_all(sc, 0.3);
