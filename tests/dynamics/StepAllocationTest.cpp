@@ -127,6 +127,40 @@ TEST_P(StepAllocation, SteadyStepsDoNotAllocate) {
   EXPECT_EQ(g_allocations.load(), 0) << "heap allocations in 40 steps after warm-up";
 }
 
+// run.skin: auto grows the list's skin (and with it the listed pairs) at its first rebuilds; once it
+// has settled, steps across rebuilds must not allocate either. Fused dumbbells at Pe 1, dt 1e-3
+// a^2/D0, where the adaptive skin matters (a 0.3 a list lasts a step or two); 300 steps of warm-up
+// (about 15 rebuilds), then 200 counted. With 2 steps of warm-up, while the skin still grows, the
+// window holds 2 allocations and the test fails (shown).
+TEST(StepAllocationAdaptiveSkin, SettledAdaptiveSkinDoesNotAllocate) {
+  const std::size_t n = 216;
+  Physics ph;
+  ph.kT = 1.0;
+  ph.shear_rate = 1.0;
+  ph.volume_fraction = 0.3;
+  auto shape = make<Shape>("shape", "dicolloid", "{a: 1, b: 1, c: 1}");
+  Scene scene(shape, n, std::cbrt(double(n) * shape->volume() / 0.3), ph);
+  geometry::MonteCarloOptions mc;
+  mc.seed = 13;
+  geometry::initialise_monte_carlo(*scene.system, mc);
+  scene.finish(make<HydroModel>("hydro", "fld"), {make<ForceLaw>("force", "repulsion")},
+               HydroRequest{true, true, false}, 0.3);
+  scene.list.adapt_skin(0.3, 2.0, 60);
+  EulerMaruyama integrator(5, true, DriftScheme::Midpoint, n);
+  auto steps = [&](int count) {
+    for (int k = 0; k < count; ++k) integrator.step(*scene.system, *scene.evaluator, 1e-3, false);
+  };
+  steps(300);
+  EXPECT_GT(scene.list.skin(), 0.6) << "the skin should have grown";
+  g_allocations = 0;
+  g_counting = true;
+  const std::int64_t rebuilds = scene.list.rebuilds();
+  steps(200);
+  g_counting = false;
+  EXPECT_GT(scene.list.rebuilds(), rebuilds + 3) << "the window should include neighbour rebuilds";
+  EXPECT_EQ(g_allocations.load(), 0) << "heap allocations in 200 steps after the skin settled";
+}
+
 INSTANTIATE_TEST_SUITE_P(Scenes, StepAllocation,
                          ::testing::Values(Case{"sphere", "{}", "fld", true},
                                            Case{"sphere", "{}", "fld", false},
