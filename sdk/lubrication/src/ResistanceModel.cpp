@@ -226,21 +226,16 @@ void ResistanceModel::assemble(const System& system, const NodePairList& pairs) 
   const bool shear = request_.shear && system.physics().shear_rate != 0.0;
   iso_.update(system, E_, shear);
   current_is_source_ = false;
-  if (settings_.lubrication && (lub_.update(system, pairs) || A_.blocks() != n)) {
+  const bool new_pairs = settings_.lubrication && (lub_.update(system, pairs) || A_.blocks() != n);
+  if (!new_pairs && A_.pattern_id() != pairs_pattern_ && factor_source_.pattern_id() == pairs_pattern_) {
+    // A_ held the factor's older source (swapped below); the last assembly wrote the current
+    // pattern into the other matrix.
+    A_.copy_pattern_from(factor_source_);
+  } else if (new_pairs || A_.pattern_id() != pairs_pattern_) {  // (the latter: after a restore)
     lub_.body_pairs(body_pairs_);
     A_.set_pattern_for_overwrite(n, body_pairs_);
     lub_.bind(A_);
     pairs_pattern_ = A_.pattern_id();
-  } else if (A_.pattern_id() != pairs_pattern_) {
-    // A_ held the factor's older source (swapped below): the current pattern is in the other
-    // matrix, which the last assembly wrote (or, after a restore, is rebuilt from the pair list).
-    if (factor_source_.pattern_id() == pairs_pattern_) {
-      A_.copy_pattern_from(factor_source_);
-    } else {
-      A_.set_pattern_for_overwrite(n, body_pairs_);
-      lub_.bind(A_);
-      pairs_pattern_ = A_.pattern_id();
-    }
   }
   // No zeroing of R (it was 10 % of a sphere assembly, bench/README.md): the diagonal is assigned
   // here and lub_.add_to writes every off-diagonal block of its pattern (without lubrication the
