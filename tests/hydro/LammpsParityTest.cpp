@@ -1,7 +1,8 @@
 // LAMMPS parity of the `fld` plugin with `conventions: lammps`: for 108 spheres at fixed positions
 // (phi = 0.30 and 0.45, simple shear gammadot = 1, kT = 0) the velocities equal those of LAMMPS
 // pair lubricateU (cutinner 2.01 = delta_num 0.01, cutoff 2.5, flaglog 1, flagVF 1), stored by
-// bench/lammps/parity/run.sh in tests/data/lammps_lubricateU_phi*.txt. LAMMPS is not needed here.
+// bench/lammps/parity/run.sh in tests/data/lammps_lubricateU_phi*.txt, and with `log_terms: false`
+// those of flaglog 0 (lammps_lubricateU_phi0.30_flaglog0.txt). LAMMPS is not needed here.
 //
 // Tolerance: LAMMPS stops its conjugate gradients at a relative residual of 1e-4 (fixed in
 // pair_lubricateU.cpp). A direct solve of lubricateU's system (bench/lammps/parity/lubricate_u.py,
@@ -75,6 +76,7 @@ Params fld_params(const PluginInfo& info, const std::vector<std::pair<std::strin
 
 struct Difference {
   double max_u, rms_u, max_w, rms_w;  // |fldsim - LAMMPS| over the rms velocity, max and rms over spheres
+  double max_w_abs;                   // max |W_fldsim - W_LAMMPS| itself (units gammadot)
 };
 
 // Velocities of the fld plugin with `given` options for the reference positions, against LAMMPS's.
@@ -111,12 +113,12 @@ Difference compare(const Reference& ref, const std::vector<std::pair<std::string
     dw_max = std::max(dw_max, dw);
   }
   const double rms_u = std::sqrt(su / n), rms_w = std::sqrt(sw / n);
-  return {du_max / rms_u, std::sqrt(du2 / n) / rms_u, dw_max / rms_w, std::sqrt(dw2 / n) / rms_w};
+  return {du_max / rms_u, std::sqrt(du2 / n) / rms_u, dw_max / rms_w, std::sqrt(dw2 / n) / rms_w, dw_max};
 }
 
 void report(const char* what, const Difference& d) {
-  std::printf("%s: |dU| max %.2e rms %.2e, |dW| max %.2e rms %.2e (of the rms velocity)\n", what, d.max_u,
-              d.rms_u, d.max_w, d.rms_w);
+  std::printf("%s: |dU| max %.2e rms %.2e, |dW| max %.2e rms %.2e (of the rms velocity); |dW| max %.2e\n",
+              what, d.max_u, d.rms_u, d.max_w, d.rms_w, d.max_w_abs);
 }
 
 const std::vector<std::pair<std::string, ParamValue>> kLammps = {
@@ -175,5 +177,40 @@ TEST(LammpsParity, EveryLubricateUFormIsNeeded) {
     const Difference d = compare(ref, options);
     report(name, d);
     EXPECT_GT(std::max(d.max_u, d.max_w), 10 * 2e-3);
+  }
+}
+
+TEST(LammpsParity, LogTermsOffGivesLubricateUFlaglog0Velocities) {
+  // flaglog 0: the squeeze's 1/h alone and Kumar & Higdon's R_0 fit for it (1 + 2.16 phi, R_T0
+  // unscaled). The translations match to LAMMPS's CG error (its file: max 6.8e-4, rms 2.4e-4 of the
+  // rms velocity; same tolerance as above). No pair torque is left, so every sphere turns with the
+  // flow: LAMMPS's relative W is exactly zero, and fldsim's is zero to its CG tolerance (1e-10 of
+  // the right-hand side, which is of order 1). With the log terms the same model misses by more
+  // than 10x the tolerance.
+  const Reference ref = read_reference("lammps_lubricateU_phi0.30_flaglog0.txt");
+  auto options = kLammps;
+  options.emplace_back("log_terms", false);
+  const Difference d = compare(ref, options);
+  report("log_terms false", d);
+  EXPECT_LT(d.max_u, 2e-3);
+  EXPECT_LT(d.rms_u, 1e-3);
+  EXPECT_LT(d.max_w_abs, 1e-8);
+
+  const Difference with_logs = compare(ref, kLammps);
+  report("log_terms true", with_logs);
+  EXPECT_GT(std::max(with_logs.max_u, with_logs.max_w_abs), 10 * 2e-3);
+}
+
+TEST(LammpsParity, LogTermsOffRefusesTheFitMadeWithThem) {
+  // fldsim's R_0 refit supplies only what the log terms leave out; asked for together with
+  // log_terms: false it is a configuration error naming the key, not a silent mismatch.
+  const PluginRegistry registry({FLDSIM_TEST_PLUGIN_DIR});
+  const auto params =
+      fld_params(registry.find("hydro", "fld"), {{"log_terms", false}, {"r0_fit", std::string("fldsim")}});
+  try {
+    registry.create<HydroModel>("hydro", "fld", params);
+    FAIL() << "r0_fit: fldsim with log_terms: false was accepted";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("r0_fit"), std::string::npos) << e.what();
   }
 }

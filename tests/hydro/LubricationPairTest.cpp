@@ -168,6 +168,28 @@ TEST(LubricationPair, LammpsPumpIsAQuarterOfJeffreyOnishi) {
   EXPECT_NEAR(a.pump, 8 * kPi * kMu * 3.0 / 40 * std::log(100.0), 1e-13);
 }
 
+TEST(LubricationPair, WithoutLogTermsOnlyTheSqueezeSingularityIsLeft) {
+  // log_terms false (LAMMPS flaglog 0): X^A's 1/(4 xi) alone, at any gap; no shear or pump mode;
+  // the twist (a contact constant, not a log term) as `twist` says. Both pump forms.
+  for (PumpForm pump : {PumpForm::JeffreyOnishi, PumpForm::Lammps}) {
+    LubricationOptions opt;
+    opt.log_terms = false;
+    opt.pump = pump;
+    LubricationOptions with_logs = opt;
+    with_logs.log_terms = true;
+    for (double xi : {1e-4, 0.01, 0.3}) {
+      const auto c = LubricationPair::coefficients(1.0, 1.0, 2.0 + xi, kMu, opt);
+      const auto l = LubricationPair::coefficients(1.0, 1.0, 2.0 + xi, kMu, with_logs);
+      EXPECT_NEAR(c.squeeze, 6 * kPi * kMu / (4 * xi), 1e-12 / xi);
+      EXPECT_NEAR(l.squeeze - c.squeeze, 6 * kPi * kMu * 9.0 / 40 * std::log(1.0 / xi), 1e-12 / xi);
+      EXPECT_EQ(c.shear, 0.0);
+      EXPECT_EQ(c.pump, 0.0);
+      EXPECT_EQ(c.twist, l.twist);
+      EXPECT_GT(l.shear, 0.0);
+    }
+  }
+}
+
 TEST(LubricationPair, GapFloorAndLogCutoff) {
   LubricationOptions opt;
   opt.delta_num = 1.0 / 64;  // exactly representable, as is 2 + 1/64

@@ -1,4 +1,4 @@
-"""The linear system that LAMMPS pair lubricateU (FLD package, flaglog = 1, flagVF = 1, monodisperse
+"""The linear system that LAMMPS pair lubricateU (FLD package, flaglog = 1 or 0, flagVF = 1, monodisperse
 spheres of radius a) solves each stage, as read from its documentation and source, written out
 here with numpy so that its CG answer can be checked against a direct solve.
 
@@ -13,17 +13,23 @@ The ambient strain enters as the fluid's relative velocity across the gap, -2a E
 point relative to j's (contact distance 2a), i.e. the right-hand side is the wrench of the modes
 for g = 2a E.d. Isolated part: R_0 = 6 pi mu a f_t(phi), R_T0 = 8 pi mu a^3 f_r(phi) with
 phi = N (4/3) pi a^3 / V (Kumar & Higdon's fits, reference section 1a). Lab velocities are
-v + gammadot y e_x and w - gammadot/2 e_z."""
+v + gammadot y e_x and w - gammadot/2 e_z.
+With flaglog = 0 the pair has the squeeze's 1/(4h) alone (a_sh = a_pu = 0, no pair torques) and
+R_0 = 6 pi mu a (1 + 2.16 phi), R_T0 = 8 pi mu a^3 (pair_lubricateU.cpp, init_style)."""
 import math
 
 import numpy as np
 
 
-def solve(x, L, gdot=1.0, mu=1.0 / (6.0 * math.pi), a=1.0, cut_inner=2.01, cutoff=2.5):
+def solve(x, L, gdot=1.0, mu=1.0 / (6.0 * math.pi), a=1.0, cut_inner=2.01, cutoff=2.5, flaglog=1):
     n = len(x)
     phi = n * 4.0 / 3.0 * math.pi * a ** 3 / L ** 3
-    R0 = 6 * math.pi * mu * a * (1 + 2.725 * phi - 6.583 * phi * phi)
-    RT0 = 8 * math.pi * mu * a ** 3 * (1 + 0.749 * phi - 2.469 * phi * phi)
+    if flaglog:
+        R0 = 6 * math.pi * mu * a * (1 + 2.725 * phi - 6.583 * phi * phi)
+        RT0 = 8 * math.pi * mu * a ** 3 * (1 + 0.749 * phi - 2.469 * phi * phi)
+    else:
+        R0 = 6 * math.pi * mu * a * (1 + 2.16 * phi)
+        RT0 = 8 * math.pi * mu * a ** 3
     E = np.array([[0, 0.5 * gdot, 0], [0.5 * gdot, 0, 0], [0, 0, 0]])
     R = np.zeros((6 * n, 6 * n))
     b = np.zeros(6 * n)
@@ -42,7 +48,7 @@ def solve(x, L, gdot=1.0, mu=1.0 / (6.0 * math.pi), a=1.0, cut_inner=2.01, cutof
             d = rv / r
             h = max(r, cut_inner) - 2 * a
             h /= a
-            L1 = math.log(1 / h)
+            L1 = math.log(1 / h) if flaglog else 0.0
             a_sq = 6 * math.pi * mu * a * (1 / (4 * h) + 9 / 40 * L1)
             a_sh = 6 * math.pi * mu * a * L1 / 6
             a_pu = 8 * math.pi * mu * a ** 3 * 3 / 160 * L1

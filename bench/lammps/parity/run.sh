@@ -19,13 +19,17 @@ if ! grep -qw lubricateU <<< "$lmp_help"; then
     "(Debian: apt-get install lammps)" >&2
   exit 3
 fi
-# phi, Monte Carlo seed
-for spec in "0.30 1" "0.45 2"; do
-  read -r phi seed <<< "$spec"
+# phi, Monte Carlo seed, flaglog (0: the squeeze's 1/h alone, file suffix _flaglog0)
+for spec in "0.30 1 1" "0.45 2 1" "0.30 1 0"; do
+  read -r phi seed flaglog <<< "$spec"
   name="phi$phi"
+  suffix=""
+  [[ "$flaglog" == 1 ]] || suffix="_flaglog$flaglog"
   "$PY" "$here/make_start.py" "$phi" "$seed" "$work/$name.data" --sweeps 2000
-  lmp -in "$here/parity.lmp" -var data "$work/$name.data" -var out "$work/$name.dump" \
-    -log "$work/$name.log" -screen none -nocite
-  (cd "$here" && "$PY" write_reference.py "$work/$name.dump" "$root/tests/data/lammps_lubricateU_$name.txt" \
-    "make_start.py $phi $seed --sweeps 2000 (N = 108 from fcc, hard-sphere MC); lmp -in parity.lmp")
+  lmp -in "$here/parity.lmp" -var data "$work/$name.data" -var out "$work/$name$suffix.dump" \
+    -var flaglog "$flaglog" -log "$work/$name$suffix.log" -screen none -nocite
+  (cd "$here" && "$PY" write_reference.py "$work/$name$suffix.dump" \
+    "$root/tests/data/lammps_lubricateU_$name$suffix.txt" \
+    "make_start.py $phi $seed --sweeps 2000 (N = 108 from fcc, hard-sphere MC); lmp -in parity.lmp -var flaglog $flaglog" \
+    "$flaglog")
 done

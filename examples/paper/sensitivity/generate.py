@@ -41,6 +41,10 @@ Variants (one change each against the current defaults):
                150-500): fused dumbbells (phiX) and homonuclear c/a 0.2 (homo-phiX) at phi X =
                0.1 ... 0.3, two seeds (-r2: Monte Carlo seed 2, noise seed 43), N = 1000 for the
                fused ones at 0.1-0.25; phi_scan.py summarises them
+  nolog        hydro.conventions: lammps, log_terms: false: exactly LAMMPS pair lubricateU with
+               flaglog 0 (the squeeze's 1/h alone, no tangential or rotational pair resistance;
+               Kumar & Higdon's R_0 fit for it)
+  squeeze      log_terms: false with fldsim's other forms (twist kept, smooth taper)
   peP-phi0.1   Brownian fused dumbbells at phi 0.1 and Pe P = 0.1 ... 1000 (-r2: other seeds)
   peP-phi0.5   Brownian fused dumbbells at phi 0.5 and Pe P = 1 ... 1000, strains 0-60 (a first look)
 """
@@ -67,6 +71,9 @@ VARIANTS = {
     "khfit": {"hydro": "r0_fit: kumar_higdon"},
     "lammpslens": {"hydro": "conventions: lammps", "phi": 0.2531},
     "fixeddt": {"dt": 0.001},
+    "nolog": {"hydro": "conventions: lammps, log_terms: false"},
+    "squeeze": {"hydro": "log_terms: false"},
+    "nolog-replica": {"hydro": "conventions: lammps, log_terms: false", "seed": (2, 43)},
     "smoothvis": {"hydro": "visibility: smooth"},
     "lammpslens-smoothvis": {"hydro": "conventions: lammps, visibility: smooth", "phi": 0.2531},
     "lammpslens-smoothvis-replica": {"hydro": "conventions: lammps, visibility: smooth", "phi": 0.2531,
@@ -130,15 +137,16 @@ for _pe in [1, 1000]:
                                            "count": 1000}
 VARIANTS["long"] = dict(LONG)
 for _name in ["lammps", "lens", "lammpslens", "oldforms", "notaper", "lammpslens-smoothvis",
-              "lammpslens-smoothvis-replica"]:
+              "lammpslens-smoothvis-replica", "nolog", "squeeze"]:
     VARIANTS["long-" + _name] = dict(VARIANTS[_name], **LONG)
 BROWNIAN = ["baseline", "lammps", "lens", "lammpslens", "notaper", "isobody", "rep100", "replica", "oldforms",
-            "smoothvis", "lammpslens-smoothvis"] + [v for v in VARIANTS if v.startswith("pe")]
+            "smoothvis", "lammpslens-smoothvis", "nolog", "squeeze"] + [v for v in VARIANTS if v.startswith("pe")]
 NOBROWN = ["baseline", "replica", "lammps", "oldforms", "lens", "isobody", "rep100", "lammpslens", "notaper", "centrearm", "lever", "pump", "twist", "khfit", "long",
            "long-lammps", "long-lens", "long-lammpslens", "long-oldforms", "long-notaper", "n1000", "fixeddt",
            "smoothvis", "lammpslens-smoothvis", "lammpslens-smoothvis-replica", "lammps-smoothvis",
            "lens-smoothvis", "lammpslens-smoothvis005", "lammpslens-smoothvis02", "long-lammpslens-smoothvis",
-           "long-lammpslens-smoothvis-replica"] + [v for v in VARIANTS if "phi" in v and v[:3] in ("phi", "hom", "lam")]
+           "long-lammpslens-smoothvis-replica", "nolog", "squeeze", "nolog-replica", "long-nolog",
+           "long-squeeze"] + [v for v in VARIANTS if "phi" in v and v[:3] in ("phi", "hom", "lam")]
 
 
 def experiment(name, variant, brownian):

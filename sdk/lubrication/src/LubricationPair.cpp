@@ -30,8 +30,10 @@ LubricationCoefficients LubricationPair::coefficients(double a_i, double a_j, do
   const double abar = 0.5 * (a_i + a_j);
   // Jeffrey & Onishi (1984) gap: xi = s - 2 with s = 2r/(a_i + a_j); floored at delta_num.
   c.xi = std::max((r - a_i - a_j) / abar, options.delta_num);
-  // ln(1/xi) only for xi < 1: beyond, the asymptotic log term changes sign (LAMMPS docs).
-  const double log_inv = c.xi < 1.0 ? std::log(1.0 / c.xi) : 0.0;
+  // ln(1/xi) only for xi < 1: beyond, the asymptotic log term changes sign (LAMMPS docs). Without
+  // log terms (LAMMPS flaglog 0) it is zero, which leaves the squeeze's 1/xi and removes the shear
+  // and pump modes.
+  const double log_inv = options.log_terms && c.xi < 1.0 ? std::log(1.0 / c.xi) : 0.0;
   const double lam = a_j / a_i;  // JO radius ratio lambda = a_2/a_1
   const double opl = 1.0 + lam;
 

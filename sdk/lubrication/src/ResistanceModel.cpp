@@ -73,6 +73,10 @@ void describe_lubrication_params(ParamSchema& s) {
   s.choice("pump", std::string("jeffrey_onishi"), {"jeffrey_onishi", "lammps"},
            "counter-rotation (pump) coefficient: Jeffrey-Onishi (3/40) or LAMMPS lubricateU (3/160)");
   s.flag("twist", true, "include the twist mode (relative rotation about the line of centres)");
+  s.flag("log_terms", true,
+         "include the log(1/gap) terms: false keeps the squeeze mode's 1/gap term alone (no shear or pump "
+         "mode; the twist mode stays as twist says), as LAMMPS pair lubricateU with flaglog 0; fld's R_0 "
+         "then uses Kumar & Higdon's fit made for it (r0_fit kumar_higdon)");
   s.choice("lever", std::string("centre"), {"centre", "contact"},
            "shear-mode lever arms: centre (r a_i/(a_i+a_j), sums to r: rigid rotation is force-free) "
            "or contact (the node radii, as LAMMPS); docs/two-body.md");
@@ -138,6 +142,7 @@ ModelSettings read_lubrication_params(const Params& p) {
   if (lammps && p.given("twist") && p.flag("twist"))
     p.fail("twist", "true contradicts conventions: lammps (which has no twist mode); remove one of the two");
   s.lub.twist = lammps ? false : p.flag("twist");
+  s.lub.log_terms = p.flag("log_terms");
   s.lub.lever = convention_choice(p, "lever", "contact") == "contact" ? Lever::Contact : Lever::Centre;
   s.lub.strain_arm =
       convention_choice(p, "strain_arm", "contact") == "contact" ? StrainArm::Contact : StrainArm::Centre;
@@ -165,6 +170,9 @@ IsotropicFactors isotropic_factors(IsotropicFit fit, double phi, bool tapered) {
       // R0, RT0, RS0 of LAMMPS pair_lubricateU init_style() with flaglog = 1 (Kumar & Higdon 2010).
       return {1.0 + 2.725 * phi - 6.583 * phi * phi, 1.0 + 0.749 * phi - 2.469 * phi * phi,
               1.0 + 3.64 * phi - 6.95 * phi * phi};
+    case IsotropicFit::KumarHigdonSqueeze:
+      // The same source with flaglog = 0 (squeeze 1/xi alone): R0 and RS0 refitted, RT0 unscaled.
+      return {1.0 + 2.16 * phi, 1.0, 1.0 + 3.33 * phi + 2.80 * phi * phi};
     case IsotropicFit::Fldsim:
       // Refit for fldsim's Jeffrey-Onishi forms (pump 3/40, twist, cutoff 2.5 a), so that hard-sphere
       // suspensions reproduce d_s = 1 - 1.8315 phi (1 + 0.12 phi - 0.70 phi^2) (Riest et al. 2015)

@@ -13,6 +13,7 @@
 //          l_i = r a_i/(a_i + a_j); P = I - d d^T)
 //   4..6  pump:    P (w_i - w_j)                                   [Y^C, log]
 //   7     twist:   d.(w_i - w_j)                                   [X^C, contact value]
+// Without log terms (LubricationOptions::log_terms false) only the squeeze mode's 1/xi remains.
 // Every coefficient is multiplied by a taper T(r) that takes it smoothly (C2) to zero over a window
 // below the cutoff, so R_delta, and the mobility, are continuous when a pair enters or leaves the
 // list: a jump there has a thermal drift kT div M that no finite-step scheme represents (the
@@ -42,6 +43,9 @@ struct LubricationOptions {
   double delta_num = 1e-5;  // gaps (in abar) below this are evaluated at delta_num
   PumpForm pump = PumpForm::JeffreyOnishi;
   bool twist = true;
+  // false: the squeeze mode's 1/xi term alone, no log terms (so no shear or pump mode), as LAMMPS
+  // pair lubricateU with flaglog 0; the twist mode (a contact constant) stays as `twist` says.
+  bool log_terms = true;
   Lever lever = Lever::Centre;
   StrainArm strain_arm = StrainArm::Contact;  // docs/two-body.md: closer to the exact A, B, C
   double cutoff = 2.5;                        // node centre distance (in abar) where pairs end

@@ -19,8 +19,9 @@
 namespace fldsim::hydro {
 
 // The phi correction of R_0: none (isolated spheres), Kumar & Higdon's fit made with the LAMMPS
-// lubrication forms (reference §1a), or fldsim's refit for its Jeffrey-Onishi forms.
-enum class IsotropicFit { None, KumarHigdon, Fldsim };
+// lubrication forms (reference §1a), fldsim's refit for its Jeffrey-Onishi forms, or Kumar &
+// Higdon's fit made for pairs without log terms (LAMMPS flaglog 0).
+enum class IsotropicFit { None, KumarHigdon, Fldsim, KumarHigdonSqueeze };
 // `tapered`: the lubrication has the smooth taper (fldsim's fit differs for the two cutoff forms).
 IsotropicFactors isotropic_factors(IsotropicFit fit, double phi, bool tapered = false);
 
