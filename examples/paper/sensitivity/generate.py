@@ -114,6 +114,12 @@ VARIANTS["lammps-phi0.3-n1000"] = dict(LONG, phi=0.3, tolerance="1.0e-3", count=
 for _phi in [0.25, 0.3]:
     VARIANTS[f"lammpssmooth-phi{_phi:g}-n1000"] = dict(LONG, phi=_phi, tolerance="1.0e-3", count=1000,
                                                        hydro="conventions: lammps, visibility: smooth")
+# LAMMPS's flaglog 0 (squeeze only) at the paper's size, phi 0.3, the same tolerance.
+VARIANTS["nolog-phi0.3-n1000"] = dict(LONG, phi=0.3, tolerance="1.0e-3", count=1000,
+                                      hydro="conventions: lammps, log_terms: false")
+# LAMMPS's forms (flaglog 1) at the paper's size with Brownian motion, Pe 1000, strains 0-500
+# averaged over 150-500: lubricateU's model in the paper's setting.
+VARIANTS["lammps-n1000-long"] = dict(LONG, count=1000, hydro="conventions: lammps")
 # ... and the default forms at that tolerance, for a like-for-like pair at phi 0.2.
 VARIANTS["phi0.2-n1000-t3"] = dict(LONG, phi=0.2, tolerance="1.0e-3", count=1000)
 # The paper's Pe sweep (its Fig. 8f: delta_theta_m rising with Pe) at phi 0.1, where fldsim's
@@ -140,13 +146,13 @@ for _name in ["lammps", "lens", "lammpslens", "oldforms", "notaper", "lammpslens
               "lammpslens-smoothvis-replica", "nolog", "squeeze"]:
     VARIANTS["long-" + _name] = dict(VARIANTS[_name], **LONG)
 BROWNIAN = ["baseline", "lammps", "lens", "lammpslens", "notaper", "isobody", "rep100", "replica", "oldforms",
-            "smoothvis", "lammpslens-smoothvis", "nolog", "squeeze"] + [v for v in VARIANTS if v.startswith("pe")]
+            "smoothvis", "lammpslens-smoothvis", "nolog", "squeeze", "lammps-n1000-long"] + [v for v in VARIANTS if v.startswith("pe")]
 NOBROWN = ["baseline", "replica", "lammps", "oldforms", "lens", "isobody", "rep100", "lammpslens", "notaper", "centrearm", "lever", "pump", "twist", "khfit", "long",
            "long-lammps", "long-lens", "long-lammpslens", "long-oldforms", "long-notaper", "n1000", "fixeddt",
            "smoothvis", "lammpslens-smoothvis", "lammpslens-smoothvis-replica", "lammps-smoothvis",
            "lens-smoothvis", "lammpslens-smoothvis005", "lammpslens-smoothvis02", "long-lammpslens-smoothvis",
            "long-lammpslens-smoothvis-replica", "nolog", "squeeze", "nolog-replica", "long-nolog",
-           "long-squeeze"] + [v for v in VARIANTS if "phi" in v and v[:3] in ("phi", "hom", "lam")]
+           "long-squeeze", "nolog-phi0.3-n1000"] + [v for v in VARIANTS if "phi" in v and v[:3] in ("phi", "hom", "lam")]
 
 
 def experiment(name, variant, brownian):
