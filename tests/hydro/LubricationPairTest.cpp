@@ -166,6 +166,14 @@ TEST(LubricationPair, LammpsPumpIsAQuarterOfJeffreyOnishi) {
   // 8 pi mu a^3 (3/40) ln(1/xi) vs LAMMPS 8 pi mu a^3 (3/160) ln(1/xi) (reference §2d).
   EXPECT_NEAR(b.pump / a.pump, 0.25, 1e-14);
   EXPECT_NEAR(a.pump, 8 * kPi * kMu * 3.0 / 40 * std::log(100.0), 1e-13);
+  // The ablation: no pump mode, every other coefficient as with Jeffrey-Onishi's.
+  LubricationOptions none;
+  none.pump = PumpForm::None;
+  const auto c = LubricationPair::coefficients(1.0, 1.0, 2.01, kMu, none);
+  EXPECT_EQ(c.pump, 0.0);
+  EXPECT_EQ(c.squeeze, a.squeeze);
+  EXPECT_EQ(c.shear, a.shear);
+  EXPECT_EQ(c.twist, a.twist);
 }
 
 TEST(LubricationPair, WithoutLogTermsOnlyTheSqueezeSingularityIsLeft) {

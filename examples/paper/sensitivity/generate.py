@@ -45,6 +45,7 @@ Variants (one change each against the current defaults):
                flaglog 0 (the squeeze's 1/h alone, no tangential or rotational pair resistance;
                Kumar & Higdon's R_0 fit for it)
   squeeze      log_terms: false with fldsim's other forms (twist kept, smooth taper)
+  nopump       pump: none (an ablation: no counter-rotation mode, the other forms fldsim's)
   peP-phi0.1   Brownian fused dumbbells at phi 0.1 and Pe P = 0.1 ... 1000 (-r2: other seeds)
   peP-phi0.5   Brownian fused dumbbells at phi 0.5 and Pe P = 1 ... 1000, strains 0-60 (a first look)
 """
@@ -74,6 +75,8 @@ VARIANTS = {
     "nolog": {"hydro": "conventions: lammps, log_terms: false"},
     "squeeze": {"hydro": "log_terms: false"},
     "nolog-replica": {"hydro": "conventions: lammps, log_terms: false", "seed": (2, 43)},
+    "nopump": {"hydro": "pump: none"},
+    "nopump-replica": {"hydro": "pump: none", "seed": (2, 43)},
     "smoothvis": {"hydro": "visibility: smooth"},
     "lammpslens-smoothvis": {"hydro": "conventions: lammps, visibility: smooth", "phi": 0.2531},
     "lammpslens-smoothvis-replica": {"hydro": "conventions: lammps, visibility: smooth", "phi": 0.2531,
@@ -143,7 +146,7 @@ for _pe in [1, 1000]:
                                            "count": 1000}
 VARIANTS["long"] = dict(LONG)
 for _name in ["lammps", "lens", "lammpslens", "oldforms", "notaper", "lammpslens-smoothvis",
-              "lammpslens-smoothvis-replica", "nolog", "squeeze"]:
+              "lammpslens-smoothvis-replica", "nolog", "squeeze", "nopump"]:
     VARIANTS["long-" + _name] = dict(VARIANTS[_name], **LONG)
 BROWNIAN = ["baseline", "lammps", "lens", "lammpslens", "notaper", "isobody", "rep100", "replica", "oldforms",
             "smoothvis", "lammpslens-smoothvis", "nolog", "squeeze", "lammps-n1000-long"] + [v for v in VARIANTS if v.startswith("pe")]
@@ -152,7 +155,7 @@ NOBROWN = ["baseline", "replica", "lammps", "oldforms", "lens", "isobody", "rep1
            "smoothvis", "lammpslens-smoothvis", "lammpslens-smoothvis-replica", "lammps-smoothvis",
            "lens-smoothvis", "lammpslens-smoothvis005", "lammpslens-smoothvis02", "long-lammpslens-smoothvis",
            "long-lammpslens-smoothvis-replica", "nolog", "squeeze", "nolog-replica", "long-nolog",
-           "long-squeeze", "nolog-phi0.3-n1000"] + [v for v in VARIANTS if "phi" in v and v[:3] in ("phi", "hom", "lam")]
+           "long-squeeze", "nolog-phi0.3-n1000", "nopump", "nopump-replica", "long-nopump"] + [v for v in VARIANTS if "phi" in v and v[:3] in ("phi", "hom", "lam")]
 
 
 def experiment(name, variant, brownian):

@@ -75,7 +75,7 @@ LubricationCoefficients LubricationPair::coefficients(double a_i, double a_j, do
     const double shear_i = c.shear * a_i * a_i;
     const double shear_j = c.shear * a_j * a_j;
     c.pump = std::max(0.0, 0.5 * ((self_i - shear_i) + (self_j - shear_j)));
-  } else {
+  } else if (options.pump == PumpForm::Lammps) {
     // LAMMPS pair lubricateU (mono): a_pu = 8 pi mu a^3 (3/160) ln(1/xi), a quarter of the JO value.
     c.pump = 8.0 * kPi * mu * a_h * a_h * a_h * (3.0 / 160.0) * log_inv;
   }

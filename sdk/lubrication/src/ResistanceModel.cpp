@@ -70,8 +70,10 @@ void describe_lubrication_params(ParamSchema& s) {
       .greater(0.0)
       .at_most(0.5);
   s.number("delta_num", 1e-5, "a", "gaps below this are evaluated at this gap").greater(0.0).less(0.1);
-  s.choice("pump", std::string("jeffrey_onishi"), {"jeffrey_onishi", "lammps"},
-           "counter-rotation (pump) coefficient: Jeffrey-Onishi (3/40) or LAMMPS lubricateU (3/160)");
+  s.choice(
+      "pump", std::string("jeffrey_onishi"), {"jeffrey_onishi", "lammps", "none"},
+      "counter-rotation (pump) coefficient: Jeffrey-Onishi (3/40), LAMMPS lubricateU (3/160), or none (no "
+      "pump mode: an ablation for measuring what the mode does, not a model of two spheres)");
   s.flag("twist", true, "include the twist mode (relative rotation about the line of centres)");
   s.flag("log_terms", true,
          "include the log(1/gap) terms: false keeps the squeeze mode's 1/gap term alone (no shear or pump "
@@ -137,8 +139,10 @@ ModelSettings read_lubrication_params(const Params& p) {
   const bool lammps = lammps_conventions(p);
   s.lub.cutoff = p.number("cutoff");
   s.lub.delta_num = p.number("delta_num");
-  s.lub.pump =
-      convention_choice(p, "pump", "lammps") == "lammps" ? PumpForm::Lammps : PumpForm::JeffreyOnishi;
+  const std::string& pump = convention_choice(p, "pump", "lammps");
+  s.lub.pump = pump == "lammps" ? PumpForm::Lammps
+               : pump == "none" ? PumpForm::None
+                                : PumpForm::JeffreyOnishi;
   if (lammps && p.given("twist") && p.flag("twist"))
     p.fail("twist", "true contradicts conventions: lammps (which has no twist mode); remove one of the two");
   s.lub.twist = lammps ? false : p.flag("twist");

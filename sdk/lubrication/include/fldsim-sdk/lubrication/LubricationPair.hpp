@@ -27,7 +27,8 @@
 
 namespace fldsim::hydro {
 
-enum class PumpForm { JeffreyOnishi, Lammps };
+// None: no counter-rotation mode (an ablation, for measuring what the pump does).
+enum class PumpForm { JeffreyOnishi, Lammps, None };
 // Lever arms of the shear mode: from each centre to the common point of the gap, splitting r in
 // the ratio of the radii (Centre: l_i + l_j = r, a rigidly rotating pair is force-free), or the
 // node radii as LAMMPS pair lubricateU does (Contact: l = a).
