@@ -123,6 +123,8 @@ VARIANTS["nolog-phi0.3-n1000"] = dict(LONG, phi=0.3, tolerance="1.0e-3", count=1
 # LAMMPS's forms (flaglog 1) at the paper's size with Brownian motion, Pe 1000, strains 0-500
 # averaged over 150-500: lubricateU's model in the paper's setting.
 VARIANTS["lammps-n1000-long"] = dict(LONG, count=1000, hydro="conventions: lammps")
+# ... and the pump ablation at that size.
+VARIANTS["nopump-phi0.3-n1000"] = dict(LONG, phi=0.3, tolerance="1.0e-3", count=1000, hydro="pump: none")
 # ... and the default forms at that tolerance, for a like-for-like pair at phi 0.2.
 VARIANTS["phi0.2-n1000-t3"] = dict(LONG, phi=0.2, tolerance="1.0e-3", count=1000)
 # The paper's Pe sweep (its Fig. 8f: delta_theta_m rising with Pe) at phi 0.1, where fldsim's
@@ -155,7 +157,7 @@ NOBROWN = ["baseline", "replica", "lammps", "oldforms", "lens", "isobody", "rep1
            "smoothvis", "lammpslens-smoothvis", "lammpslens-smoothvis-replica", "lammps-smoothvis",
            "lens-smoothvis", "lammpslens-smoothvis005", "lammpslens-smoothvis02", "long-lammpslens-smoothvis",
            "long-lammpslens-smoothvis-replica", "nolog", "squeeze", "nolog-replica", "long-nolog",
-           "long-squeeze", "nolog-phi0.3-n1000", "nopump", "nopump-replica", "long-nopump"] + [v for v in VARIANTS if "phi" in v and v[:3] in ("phi", "hom", "lam")]
+           "long-squeeze", "nolog-phi0.3-n1000", "nopump", "nopump-replica", "long-nopump", "nopump-phi0.3-n1000"] + [v for v in VARIANTS if "phi" in v and v[:3] in ("phi", "hom", "lam")]
 
 
 def experiment(name, variant, brownian):
