@@ -533,41 +533,50 @@ TEST(BlockIncompleteCholesky, IsExactWithoutFillWhateverTheNumbering) {
   EXPECT_FALSE(other.restore_preconditioner_state(short_state, n));
 }
 
-// IC(0) can break down on an SPD matrix: on a 4-cycle (Kershaw's kind of example, J. Comput. Phys.
-// 26, 43 (1978)) the fill it drops leaves the last pivot negative in most row orders. Then the
-// solver takes Eisenstat D-ILU, which factorises in the bodies' own numbering, and block Jacobi only
-// if that breaks down too. Every numbering of the cycle's bodies is tried (IC(0) picks its own row
-// order from the graph, so which numberings break it is found, not assumed); the matrix is the
-// scalar one in the rotational rows (below), so the block factorisations are the scalar ones. Before the
-// fallback a breakdown went straight to block Jacobi (294 against 30 CG iterations per step on 1000
-// spheres near a cubic lattice): the check of `active()` fails that variant.
-TEST(BlockPCG, FallsBackToDiluWhereIncompleteCholeskyBreaksDown) {
+namespace {
+
+// The 4-cycle kKershawCycle with body i numbered label[i], in the rotational rows only: the
+// translational rows are the identity, so no block is stiff for the cluster fill (whose fill would
+// make this cycle's factor exact) and the rotational 3 x 3 factorisations are the scalar ones.
+BlockSparseMatrix kershaw_cycle(const std::array<std::uint32_t, 4>& label) {
   const auto& M = fldsim::hydro::test::kKershawCycle;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> upper;
+  for (std::uint32_t i = 0; i < 4; ++i)
+    for (std::uint32_t j = i + 1; j < 4; ++j)
+      if (M[i][j] != 0.0) upper.emplace_back(std::min(label[i], label[j]), std::max(label[i], label[j]));
+  BlockSparseMatrix A;
+  A.set_pattern(4, upper);
+  auto rotational = [](double v, double translational) {
+    Mat6 B = Mat6::Zero();
+    B.topLeftCorner<3, 3>() = translational * Eigen::Matrix3d::Identity();
+    B.bottomRightCorner<3, 3>() = v * Eigen::Matrix3d::Identity();
+    return B;
+  };
+  for (std::uint32_t i = 0; i < 4; ++i) {
+    A.diagonal(label[i]) = rotational(M[i][i], 1.0);
+    for (std::uint32_t j = i + 1; j < 4; ++j)
+      if (M[i][j] != 0.0)
+        A.upper(A.find(std::min(label[i], label[j]), std::max(label[i], label[j]))) =
+            rotational(M[i][j], 0.0);
+  }
+  return A;
+}
+
+}  // namespace
+
+// IC(0) can break down on an SPD matrix: on a 4-cycle (Kershaw's kind of example, J. Comput. Phys.
+// 26, 43 (1978)) the fill it drops leaves the last pivot negative in most row orders. Without
+// diagonal shifts (set_shifts({})) the solver then takes Eisenstat D-ILU, which factorises in the
+// bodies' own numbering, and block Jacobi only if that breaks down too. Every numbering of the
+// cycle's bodies is tried (IC(0) picks its own row order from the graph, so which numberings break
+// it is found, not assumed). Before the fallback a breakdown went straight to block Jacobi (294
+// against 30 CG iterations per step on 1000 spheres near a cubic lattice): the check of `active()`
+// fails that variant.
+TEST(BlockPCG, FallsBackToDiluWhereIncompleteCholeskyBreaksDown) {
   std::array<std::uint32_t, 4> label = {0, 1, 2, 3};
   int fallbacks = 0;
   do {
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> upper;
-    for (std::uint32_t i = 0; i < 4; ++i)
-      for (std::uint32_t j = i + 1; j < 4; ++j)
-        if (M[i][j] != 0.0) upper.emplace_back(std::min(label[i], label[j]), std::max(label[i], label[j]));
-    BlockSparseMatrix A;
-    A.set_pattern(4, upper);
-    // The cycle in the rotational rows only: the translational rows are the identity, so no block
-    // is stiff for the cluster fill (whose fill would make this cycle's factor exact) and the
-    // rotational 3 x 3 factorisations are the scalar ones.
-    auto rotational = [](double v, double translational) {
-      Mat6 B = Mat6::Zero();
-      B.topLeftCorner<3, 3>() = translational * Eigen::Matrix3d::Identity();
-      B.bottomRightCorner<3, 3>() = v * Eigen::Matrix3d::Identity();
-      return B;
-    };
-    for (std::uint32_t i = 0; i < 4; ++i) {
-      A.diagonal(label[i]) = rotational(M[i][i], 1.0);
-      for (std::uint32_t j = i + 1; j < 4; ++j)
-        if (M[i][j] != 0.0)
-          A.upper(A.find(std::min(label[i], label[j]), std::max(label[i], label[j]))) =
-              rotational(M[i][j], 0.0);
-    }
+    const BlockSparseMatrix A = kershaw_cycle(label);
     const bool ic = fldsim::BlockIncompleteCholesky().factorize(A);
     const bool dilu = fldsim::EisenstatDilu().factorize(A);
     const auto expected = ic     ? fldsim::Preconditioner::IncompleteCholesky
@@ -575,8 +584,10 @@ TEST(BlockPCG, FallsBackToDiluWhereIncompleteCholeskyBreaksDown) {
                                  : fldsim::Preconditioner::BlockJacobi;
     if (!ic && dilu) ++fallbacks;
     BlockPCG pcg(fldsim::Preconditioner::IncompleteCholesky);
+    pcg.set_shifts({});
     pcg.prepare(A);
     EXPECT_EQ(pcg.active(), expected) << "numbering " << label[0] << label[1] << label[2] << label[3];
+    EXPECT_EQ(pcg.shift(), 0.0);
     const Eigen::VectorXd b = random_vector(A.size(), 91);
     Eigen::VectorXd x = Eigen::VectorXd::Zero(A.size());
     const auto res = pcg.solve(A, b.data(), x.data(), 1e-10, 100);
@@ -585,6 +596,57 @@ TEST(BlockPCG, FallsBackToDiluWhereIncompleteCholeskyBreaksDown) {
   } while (std::next_permutation(label.begin(), label.end()));
   // The cycle does exercise the fallback (the property the test is about, not a tuned number).
   EXPECT_GT(fallbacks, 0);
+}
+
+// With the default shifts, where IC(0) breaks down on the 4-cycle the solver factorises
+// A + alpha diag(A) with the first alpha of kDefaultShifts that works (Manteuffel, Math. Comp. 34,
+// 473 (1980)) and stays on IC(0); where IC(0) works nothing changes, bit for bit. Which alpha works
+// is found by factorising the shifted matrix itself, not assumed. A shift that is not applied leaves
+// the factorisation broken (D-ILU active: fails), one applied to the wrong matrix fails the
+// residual check, and a retry without the ladder's order reports another alpha.
+TEST(BlockPCG, ShiftsIncompleteCholeskyWhereItBreaksDown) {
+  std::array<std::uint32_t, 4> label = {0, 1, 2, 3};
+  int shifted = 0;
+  do {
+    const BlockSparseMatrix A = kershaw_cycle(label);
+    double expected = -1.0;
+    if (fldsim::BlockIncompleteCholesky().factorize(A)) {
+      expected = 0.0;
+    } else {
+      for (double alpha : BlockPCG::kDefaultShifts) {
+        // The shifted matrix written out: IC(0) of it must work where the solver says it does.
+        BlockSparseMatrix S;
+        S.copy_from(A);
+        for (std::size_t i = 0; i < 4; ++i) S.diagonal(i).diagonal() *= 1.0 + alpha;
+        if (fldsim::BlockIncompleteCholesky().factorize(S)) {
+          expected = alpha;
+          break;
+        }
+      }
+    }
+    ASSERT_GE(expected, 0.0) << "no shift of the ladder factorises this numbering";
+    if (expected > 0.0) ++shifted;
+    BlockPCG pcg(fldsim::Preconditioner::IncompleteCholesky);
+    pcg.prepare(A);
+    const std::string numbering = std::to_string(label[0]) + std::to_string(label[1]) +
+                                  std::to_string(label[2]) + std::to_string(label[3]);
+    EXPECT_EQ(pcg.active(), fldsim::Preconditioner::IncompleteCholesky) << numbering;
+    EXPECT_EQ(pcg.shift(), expected) << numbering;
+    const Eigen::VectorXd b = random_vector(A.size(), 91);
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(A.size());
+    const auto res = pcg.solve(A, b.data(), x.data(), 1e-10, 100);
+    EXPECT_TRUE(res.converged) << numbering;
+    EXPECT_LE((b - A.dense() * x).norm() / b.norm(), 1e-10 * (1.0 + 1e-6)) << numbering;
+    if (expected == 0.0) {  // unshifted: the same bits as a solver that never shifts
+      BlockPCG plain(fldsim::Preconditioner::IncompleteCholesky);
+      plain.set_shifts({});
+      plain.prepare(A);
+      Eigen::VectorXd y = Eigen::VectorXd::Zero(A.size());
+      plain.solve(A, b.data(), y.data(), 1e-10, 100);
+      for (Eigen::Index k = 0; k < x.size(); ++k) ASSERT_EQ(x[k], y[k]) << numbering;
+    }
+  } while (std::next_permutation(label.begin(), label.end()));
+  EXPECT_GT(shifted, 0);
 }
 
 TEST(BlockPCG, ReportsNonConvergence) {

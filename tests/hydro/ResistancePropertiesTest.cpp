@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <sstream>
 #include <string>
 #ifdef _OPENMP
 #include <omp.h>
@@ -543,6 +544,7 @@ TEST(ResistanceModelNotes, SayWhenThePreconditionerFallsBackThenCountTheBreakdow
   do {
     const std::vector<double> state = four_cycle_checkpoint(label);
     ModelSettings st = lubrication_settings();
+    st.ic_shifts.clear();  // no diagonal shifts: IC(0) falls back at once
     ResistanceModel m(st);
     HydroRequest req;
     m.configure(s, req);
@@ -578,12 +580,67 @@ TEST(ResistanceModelNotes, SayWhenThePreconditionerFallsBackThenCountTheBreakdow
     // Factorisations: 1 + 8 x 2 + 1 (the 3rd breakdown's second) = 18, of which 10 fell back.
     auto counts = [&](int breakdowns, int fell, int of) {
       return "incomplete_cholesky preconditioner has broken down " + std::to_string(breakdowns) +
-             " times: " + std::to_string(fell) + " of " + std::to_string(of) + " factorisations fell back (" +
+             " times: " + std::to_string(of) + " factorisations, " + std::to_string(fell) + " fell back (" +
              std::to_string(jacobi * fell) + " to block_jacobi)";
     };
     EXPECT_EQ(seen, (std::vector<std::string>{counts(2, 2, 3), counts(4, 5, 8), counts(8, 9, 16)}));
   } while (std::next_permutation(label.begin(), label.end()));
   EXPECT_GT(fallbacks, 0);
+}
+
+// With the default ic_shifts the same checkpoints stay on IC(0): where it breaks down the model
+// factorises R + alpha diag(R) with the first alpha that works (BlockPCG), says so once in full, and
+// counts the shifted factorisations with the breakdowns. The alpha in the line is the solver's own
+// (BlockPCG::shift), and CG converges with the shifted factor to the model's tolerance.
+TEST(ResistanceModelNotes, SayWhenIncompleteCholeskyNeededADiagonalShift) {
+  System s = four_sphere_chain();
+  std::array<std::uint32_t, 4> label = {0, 1, 2, 3};
+  int shifted = 0;
+  do {
+    ModelSettings st = lubrication_settings();
+    ResistanceModel m(st);
+    HydroRequest req;
+    m.configure(s, req);
+    m.restore_state(four_cycle_checkpoint(label));
+    const std::vector<std::string> notes = m.take_notes();
+    ASSERT_EQ(m.active_preconditioner(), Preconditioner::IncompleteCholesky);
+    // The checkpoint's matrix, read back from its numbers (four_cycle_checkpoint's layout), into a
+    // solver of its own.
+    const std::vector<double> state = four_cycle_checkpoint(label);
+    const std::size_t pairs = std::size_t(state[2]);
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> upper;
+    for (std::size_t k = 0; k < pairs; ++k)
+      upper.emplace_back(std::uint32_t(state[3 + 2 * k]), std::uint32_t(state[4 + 2 * k]));
+    BlockSparseMatrix R;
+    R.set_pattern(4, upper);
+    const double* block = state.data() + 3 + 2 * pairs;
+    for (std::size_t i = 0; i < 4; ++i, block += 36) R.diagonal(i) = Eigen::Map<const Mat6>(block);
+    for (const auto& [i, j] : upper) {
+      R.upper(R.find(i, j)) = Eigen::Map<const Mat6>(block);
+      block += 36;
+    }
+    BlockPCG probe(Preconditioner::IncompleteCholesky);
+    probe.prepare(R);
+    if (probe.shift() == 0.0) {
+      EXPECT_TRUE(notes.empty()) << notes.front();
+      continue;
+    }
+    ++shifted;
+    std::ostringstream alpha;
+    alpha << probe.shift();
+    EXPECT_EQ(notes,
+              std::vector<std::string>{"incomplete_cholesky preconditioner broke down (a pivot block not "
+                                       "positive definite); factorised R + " +
+                                       alpha.str() + " diag(R) instead (a diagonal shift; same tolerance)"});
+    // A second breakdown after a factorisation that works: the counts line, shifted ones included.
+    m.assemble(s, brute_force_pairs(s, m.pair_range(s)));
+    m.restore_state(four_cycle_checkpoint(label));
+    EXPECT_EQ(m.take_notes(),
+              std::vector<std::string>{"incomplete_cholesky preconditioner has broken down 2 times: "
+                                       "3 factorisations, 2 with a diagonal shift, 0 fell back (0 to "
+                                       "block_jacobi)"});
+  } while (std::next_permutation(label.begin(), label.end()));
+  EXPECT_GT(shifted, 0);
 }
 
 }  // namespace fldsim::hydro::test

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -104,9 +105,16 @@ class FLDSIM_VISIBLE BlockPCG {
   // this call the products are A's own).
   void bind(const BlockSparseMatrix& A);
   Result solve(const BlockSparseMatrix& A, const double* b, double* x, double tolerance, int max_iterations);
-  // The preconditioner in use after prepare(): on breakdown IC(0) falls back to Eisenstat D-ILU, and
-  // either to block Jacobi.
+  // The preconditioner in use after prepare(): on breakdown IC(0) is retried on A + alpha diag(A)
+  // for each of shifts() in turn, then falls back to Eisenstat D-ILU, and either to block Jacobi.
   Preconditioner active() const;
+  // Where IC(0) breaks down (a pivot block not positive definite), factorise A + alpha diag(A) for
+  // each alpha in turn (Manteuffel 1980) before falling back; empty: fall back at once. Default
+  // kDefaultShifts (API 5.8).
+  static constexpr std::array<double, 4> kDefaultShifts = {0.01, 0.04, 0.16, 0.64};
+  void set_shifts(const std::vector<double>& shifts);
+  // The alpha of the IC(0) factor in use: 0 for A's own (and for the other preconditioners).
+  double shift() const;
   // What a checkpoint must carry besides the matrix the preconditioner was built from, so that
   // prepare() on that matrix after a restart builds the same preconditioner (IC(0): its row order
   // and that order's age; empty otherwise). Restore before prepare(); false if malformed (API 5.2).

@@ -98,6 +98,7 @@ void BlockIncompleteCholesky::schedule_levels() {
 // then D_i = L L^T, U_ii = L^T and U_ij = L^-1 W_ij.
 bool BlockIncompleteCholesky::factor_row(const BlockSparseMatrix& A, std::size_t i) {
   Mat6 D = A.diagonal(old_of_[i]);
+  if (shift_ != 0.0) D.diagonal() *= 1.0 + shift_;
   const std::int64_t first = row_start_[i], last = row_start_[i + 1];
   for (std::int64_t a = first; a < last; ++a) {
     if (source_[a] < 0) {
@@ -162,7 +163,7 @@ bool BlockIncompleteCholesky::restore_order_state(const std::vector<double>& sta
   return true;
 }
 
-bool BlockIncompleteCholesky::factorize(const BlockSparseMatrix& A) {
+bool BlockIncompleteCholesky::factorize(const BlockSparseMatrix& A, double shift) {
   const bool reorder = old_of_.size() != A.blocks() || order_age_ >= kReorderEvery;
   stiff_clusters_.find(A, cluster_fill_next_);
   const bool new_fill = cluster_fill_next_ != cluster_fill_;
@@ -170,6 +171,16 @@ bool BlockIncompleteCholesky::factorize(const BlockSparseMatrix& A) {
   if (reorder || new_fill || pattern_id_ != A.pattern_id() || inv_lower_.size() != A.blocks())
     analyse(A, reorder);
   ++order_age_;
+  shift_ = shift;
+  return factor_rows(A);
+}
+
+bool BlockIncompleteCholesky::refactorize(const BlockSparseMatrix& A, double shift) {
+  shift_ = shift;
+  return factor_rows(A);
+}
+
+bool BlockIncompleteCholesky::factor_rows(const BlockSparseMatrix& A) {
   const std::int64_t n = std::int64_t(A.blocks());
   bool ok = true;
   if (omp_get_max_threads() == 1) {

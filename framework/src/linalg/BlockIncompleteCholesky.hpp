@@ -27,11 +27,17 @@ namespace fldsim {
 // every row is summed in the same fixed order whatever the thread count, so the result does not
 // depend on it. The factor's rows are in reverse Cuthill-McKee order of A's graph, not the bodies'
 // numbering (CuthillMcKee.hpp: a random numbering more than doubled the iterations at N = 27000). If a pivot
-// block is not positive definite (IC(0) of a general SPD matrix can break down) factorize() returns false and
-// BlockPCG falls back to Eisenstat D-ILU (and, if that breaks down too, to block Jacobi).
+// block is not positive definite (IC(0) of a general SPD matrix can break down) factorize() returns false;
+// BlockPCG then factorises A + alpha diag(A) (refactorize) and only then falls back to Eisenstat D-ILU
+// (and, if that breaks down too, to block Jacobi).
 class FLDSIM_VISIBLE BlockIncompleteCholesky {
  public:
-  bool factorize(const BlockSparseMatrix& A);
+  // The factor of A + shift diag(A): every diagonal element scaled by 1 + shift (Manteuffel's
+  // shifted incomplete Cholesky, Math. Comp. 34, 473 (1980); 0: IC(0) of A itself). False if a
+  // pivot block is not positive definite.
+  bool factorize(const BlockSparseMatrix& A, double shift = 0.0);
+  // After factorize(A) failed: the same rows (order, pattern, fill) again with another shift.
+  bool refactorize(const BlockSparseMatrix& A, double shift);
   // z = (U^T U)^-1 r.
   void apply(const double* r, double* z) const;
   // The row order of the current factor and its age, for checkpoints: [age, old_of...] (empty
@@ -53,6 +59,7 @@ class FLDSIM_VISIBLE BlockIncompleteCholesky {
   using Levels = linalg::Levels;
   void analyse(const BlockSparseMatrix& A, bool reorder);
   void schedule_levels();  // forward_ and backward_ for the current pattern, if not yet done
+  bool factor_rows(const BlockSparseMatrix& A);  // every row with shift_, then the float copies
   bool factor_row(const BlockSparseMatrix& A, std::size_t i);
   void prefetch_factor_inputs(const BlockSparseMatrix& A, std::int64_t p) const;
   void forward_row(std::size_t i, const float* r, float* z) const;
@@ -91,6 +98,7 @@ class FLDSIM_VISIBLE BlockIncompleteCholesky {
   // The factorisation runs in double: inv_lower_ = (U_ii^T)^-1 (lower triangular) and upper_ =
   // U_ij (i < j, laid out as A's upper blocks).
   std::vector<Mat6> inv_lower_, upper_;
+  double shift_ = 0.0;  // of the factorisation under way
   // The sweeps read single-precision copies and compute in single precision (Block6Kernels.hpp,
   // "Single-precision kernels"): the preconditioner need only be a fixed operator close to R^-1,
   // and CG's accuracy is set by its double-precision residual. Each copy ends in a zero pad block

@@ -1,8 +1,8 @@
 #include <Eigen/Cholesky>
 #include <cmath>
 
-#include "fldsim/parallel_loop.hpp"
 #include "fldsim/block_sparse.hpp"
+#include "fldsim/parallel_loop.hpp"
 #include "linalg/BlockIncompleteCholesky.hpp"
 #include "linalg/EisenstatDilu.hpp"
 #include "linalg/SinglePrecisionProduct.hpp"
@@ -25,6 +25,8 @@ struct BlockPCG::Workspace {
                                      int max_iterations, double bnorm, BlockPCG::Result result);
 
   Preconditioner kind, active = Preconditioner::BlockJacobi;
+  std::vector<double> shifts{BlockPCG::kDefaultShifts.begin(), BlockPCG::kDefaultShifts.end()};
+  double shift = 0.0;  // of the IC(0) factor in use
   std::vector<Mat6> inv_diag;
   BlockIncompleteCholesky ic;
   EisenstatDilu dilu;
@@ -39,6 +41,12 @@ BlockPCG::BlockPCG(BlockPCG&&) noexcept = default;
 BlockPCG& BlockPCG::operator=(BlockPCG&&) noexcept = default;
 Preconditioner BlockPCG::active() const {
   return w_->active;
+}
+void BlockPCG::set_shifts(const std::vector<double>& shifts) {
+  w_->shifts = shifts;
+}
+double BlockPCG::shift() const {
+  return w_->active == Preconditioner::IncompleteCholesky ? w_->shift : 0.0;
 }
 
 std::vector<double> BlockPCG::preconditioner_state() const {
@@ -65,16 +73,29 @@ void BlockPCG::prepare(const BlockSparseMatrix& A) {
   w.p.resize(6 * n);
   w.q.resize(6 * n);
   w.partial.resize((6 * n + kChunk - 1) / kChunk);
-  if (w.kind == Preconditioner::IncompleteCholesky && w.ic.factorize(A)) {
-    w.active = Preconditioner::IncompleteCholesky;
-    return;
+  if (w.kind == Preconditioner::IncompleteCholesky) {
+    // IC(0) can break down on an SPD matrix (the fill it drops can leave a pivot block indefinite;
+    // seen in the reverse Cuthill-McKee order of 1000 spheres near a periodic cubic lattice at
+    // phi 0.3, and at most factorisations of sheared fused-dumbbell networks). A diagonal shift
+    // makes the factorisation succeed (for a large enough shift it always does) and keeps the
+    // factor of a matrix close to A: 1000 fused dumbbells sheared 500 strains at kT = 0 took 59.6 CG
+    // iterations a step over the next 10 strains where the D-ILU fallback took 79.7 (bench/README.md,
+    // "Shifted IC(0)").
+    w.shift = 0.0;
+    bool ok = w.ic.factorize(A);
+    for (std::size_t k = 0; !ok && k < w.shifts.size(); ++k) {
+      w.shift = w.shifts[k];
+      ok = w.ic.refactorize(A, w.shift);
+    }
+    if (ok) {
+      w.active = Preconditioner::IncompleteCholesky;
+      return;
+    }
+    w.shift = 0.0;
   }
-  // IC(0) can break down on an SPD matrix (the fill it drops can leave a pivot block indefinite;
-  // seen in the reverse Cuthill-McKee order of 1000 spheres near a periodic cubic lattice at
-  // phi 0.3, where block Jacobi then took 175 CG iterations per step against 25): D-ILU next. It
-  // factorises in the bodies' own numbering and updates only the pivots, so it breaks down on
-  // other matrices than IC(0) does; block Jacobi is the last resort (its pivots are R's own
-  // diagonal blocks, always positive definite).
+  // D-ILU next. It factorises in the bodies' own numbering and updates only the pivots, so it
+  // breaks down on other matrices than IC(0) does; block Jacobi is the last resort (its pivots
+  // are R's own diagonal blocks, always positive definite).
   if (w.kind != Preconditioner::BlockJacobi && w.dilu.factorize(A)) {
     w.r_hat.resize(6 * n);
     w.x_hat.resize(6 * n);

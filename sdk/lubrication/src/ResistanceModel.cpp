@@ -109,8 +109,9 @@ void describe_lubrication_params(ParamSchema& s) {
            "clusters of bodies in stiff near contact, whose loops IC(0) would leave to the iterations, "
            "factorised in reverse "
            "Cuthill-McKee order of the pair graph whatever the bodies' numbering; where IC(0) breaks down, "
-           "a pivot block not positive definite, that factorisation uses eisenstat_dilu, and the run log "
-           "notes it: the first time, then with counts at the 2nd, 4th, 8th, ... time), eisenstat_dilu "
+           "a pivot block not positive definite, that factorisation is retried with the diagonal shifts "
+           "of ic_shifts and, if none works, uses eisenstat_dilu; the run log notes it: the first time, "
+           "then with counts at the 2nd, 4th, 8th, ... time), eisenstat_dilu "
            "(block D-ILU on the pair pattern applied with "
            "Eisenstat's trick: no product with R inside an "
            "iteration, but double-precision sweeps over R's own blocks and more iterations where R "
@@ -118,6 +119,13 @@ void describe_lubrication_params(ParamSchema& s) {
            "in every scene measured (dicolloids at Pe <= 10 and LAMMPS's documented sphere scene, one "
            "thread; bench/README.md \"Single-precision IC(0) sweeps\")) or "
            "block_jacobi (more iterations); the sweeps of the first two run parallel by dependency levels");
+  s.numbers("ic_shifts",
+            std::vector<double>(BlockPCG::kDefaultShifts.begin(), BlockPCG::kDefaultShifts.end()), "",
+            "where IC(0) breaks down: factorise R + alpha diag(R) for each alpha in turn (Manteuffel's "
+            "shifted incomplete Cholesky) before falling back to eisenstat_dilu; [] falls back at once. The "
+            "shift changes the preconditioner only, never the solution's tolerance (1000 fused dumbbells "
+            "sheared 500 strains at kT = 0: 59.6 CG iterations a step against 79.7 with the fallback; "
+            "bench/README.md \"Shifted IC(0)\")");
 }
 
 bool lammps_conventions(const Params& p) {
@@ -158,6 +166,10 @@ ModelSettings read_lubrication_params(const Params& p) {
   s.max_iterations = int(p.integer("max_iterations"));
   for (const auto& [kind, name] : kPreconditionerNames)
     if (p.text("preconditioner") == name) s.preconditioner = kind;
+  s.ic_shifts = p.numbers("ic_shifts");
+  for (std::size_t k = 0; k < s.ic_shifts.size(); ++k)
+    if (!(s.ic_shifts[k] > 0.0 && s.ic_shifts[k] <= 100.0) || (k > 0 && s.ic_shifts[k] <= s.ic_shifts[k - 1]))
+      p.fail("ic_shifts", "expected increasing shifts in (0, 100], e.g. [0.01, 0.04, 0.16, 0.64]");
   // D-ILU's threshold is per block row (reuse_factor); 0.3 measured over five scenes (bench/README.md,
   // "Eisenstat": 0.2 refactors too often on spheres, 0.5 too seldom for dicolloids at Pe 1000).
   s.refactor_threshold = p.given("refactor_threshold") || s.preconditioner != Preconditioner::EisenstatDilu
@@ -390,35 +402,49 @@ void ResistanceModel::restore_state(const std::vector<double>& state) {
   factorise();
 }
 
-// BlockPCG::prepare falls back (IC(0) -> D-ILU -> block Jacobi) where a factorisation breaks
-// down. That costs CG iterations, not accuracy. A matrix at the edge of breaking IC(0) switches
-// back and forth (N = 1000 fused dumbbells at kT = 0 with LAMMPS's forms: about 300 breakdowns in
-// 500 strains), so the log gets the first breakdown in full and then a line with the counts at the
-// 2nd, 4th, 8th, ... breakdown: a few lines per run, never one per factorisation.
+// BlockPCG::prepare retries IC(0) with diagonal shifts and then falls back (-> D-ILU -> block
+// Jacobi) where a factorisation breaks down. That costs CG iterations, not accuracy. A matrix at the
+// edge of breaking IC(0) switches back and forth (N = 1000 fused dumbbells at kT = 0 with LAMMPS's
+// forms: about 300 breakdowns in 500 strains), so the log gets the first breakdown in full and then
+// a line with the counts at the 2nd, 4th, 8th, ... breakdown: a few lines per run, never one per
+// factorisation.
 void ResistanceModel::factorise() {
   pcg_.prepare(factor_source_);
   has_factor_ = true;
   ++factorisations_;
   const Preconditioner now = pcg_.active();
-  if (now == settings_.preconditioner) {
+  const double shift = pcg_.shift();
+  if (now == settings_.preconditioner && shift == 0.0) {
     falling_back_ = false;
     return;
   }
-  ++fallbacks_;
-  if (now == Preconditioner::BlockJacobi) ++jacobi_fallbacks_;
+  if (shift > 0.0) {
+    ++shifted_;
+  } else {
+    ++fallbacks_;
+    if (now == Preconditioner::BlockJacobi) ++jacobi_fallbacks_;
+  }
   if (falling_back_) return;
   falling_back_ = true;
   ++breakdowns_;
   if ((breakdowns_ & (breakdowns_ - 1)) != 0) return;  // not a power of two
   const std::string chosen = preconditioner_name(settings_.preconditioner);
   if (breakdowns_ == 1) {
-    notes_.push_back(chosen + " preconditioner broke down (a pivot block not positive definite); CG uses " +
-                     preconditioner_name(now) + " while it does (same tolerance, more iterations per solve)");
+    std::ostringstream line;
+    line << chosen << " preconditioner broke down (a pivot block not positive definite); ";
+    if (shift > 0.0)
+      line << "factorised R + " << shift << " diag(R) instead (a diagonal shift; same tolerance)";
+    else
+      line << "CG uses " << preconditioner_name(now)
+           << " while it does (same tolerance, more iterations per solve)";
+    notes_.push_back(line.str());
     return;
   }
-  notes_.push_back(chosen + " preconditioner has broken down " + std::to_string(breakdowns_) +
-                   " times: " + std::to_string(fallbacks_) + " of " + std::to_string(factorisations_) +
-                   " factorisations fell back (" + std::to_string(jacobi_fallbacks_) + " to block_jacobi)");
+  std::string counts = chosen + " preconditioner has broken down " + std::to_string(breakdowns_) +
+                       " times: " + std::to_string(factorisations_) + " factorisations, ";
+  if (shifted_ > 0) counts += std::to_string(shifted_) + " with a diagonal shift, ";
+  notes_.push_back(counts + std::to_string(fallbacks_) + " fell back (" + std::to_string(jacobi_fallbacks_) +
+                   " to block_jacobi)");
 }
 
 std::vector<std::string> ResistanceModel::take_notes() {

@@ -40,6 +40,8 @@ struct ModelSettings {
   // (EisenstatDilu, whose measured best is 0.3); 0 rebuilds it at every assembly. The matrix it was
   // built from is the model's checkpoint state, so a resumed run solves bit-identically.
   double refactor_threshold = 0.15;
+  // Where IC(0) breaks down: the diagonal shifts tried before D-ILU takes over (BlockPCG::set_shifts).
+  std::vector<double> ic_shifts{BlockPCG::kDefaultShifts.begin(), BlockPCG::kDefaultShifts.end()};
 };
 
 // Declare and read the parameters common to lubrication and fld. `conventions: lammps` presets
@@ -55,7 +57,9 @@ const std::string& convention_choice(const Params& params, const std::string& ke
 
 class ResistanceModel : public HydroModel, public RunNotes {
  public:
-  explicit ResistanceModel(ModelSettings settings) : settings_(settings), pcg_(settings.preconditioner) {}
+  explicit ResistanceModel(ModelSettings settings) : settings_(settings), pcg_(settings.preconditioner) {
+    pcg_.set_shifts(settings_.ic_shifts);
+  }
 
   double pair_range(const System& system) const override;
   std::vector<std::string> configure(const System& system, const HydroRequest& request) override;
@@ -106,7 +110,7 @@ class ResistanceModel : public HydroModel, public RunNotes {
   // Builds the preconditioner from factor_source_ and notes a change of the one in use.
   void factorise();
   bool falling_back_ = false;  // the last factorisation used a fallback
-  std::int64_t factorisations_ = 0, fallbacks_ = 0, jacobi_fallbacks_ = 0, breakdowns_ = 0;
+  std::int64_t factorisations_ = 0, fallbacks_ = 0, jacobi_fallbacks_ = 0, shifted_ = 0, breakdowns_ = 0;
   std::vector<std::string> notes_;
   bool configured_ = false;
 };
