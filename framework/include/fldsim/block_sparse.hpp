@@ -106,7 +106,8 @@ class FLDSIM_VISIBLE BlockPCG {
   void bind(const BlockSparseMatrix& A);
   Result solve(const BlockSparseMatrix& A, const double* b, double* x, double tolerance, int max_iterations);
   // The preconditioner in use after prepare(): on breakdown IC(0) is retried on A + alpha diag(A)
-  // for each of shifts() in turn, then falls back to Eisenstat D-ILU, and either to block Jacobi.
+  // for each alpha of set_shifts() in turn, then falls back to Eisenstat D-ILU, and either to block
+  // Jacobi.
   Preconditioner active() const;
   // Where IC(0) breaks down (a pivot block not positive definite), factorise A + alpha diag(A) for
   // each alpha in turn (Manteuffel 1980) before falling back; empty: fall back at once. Default
