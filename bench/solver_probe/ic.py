@@ -1,10 +1,7 @@
-import numpy as np, sys
-from load import *
-n,tol,A,b,x0,Minv=load(); N=n//6
-Ab=A.reshape(N,6,N,6).transpose(0,2,1,3)
-nz=np.linalg.norm(Ab,axis=(2,3))>0; np.fill_diagonal(nz,False)
-tt=np.trace(Ab[:,:,:3,:3],axis1=2,axis2=3); dg=np.diag(tt).copy()
-ratio=np.abs(tt)/np.minimum.outer(dg,dg); np.fill_diagonal(ratio,0)
+# Block IC of the dumped R in numpy: IC(0) on R's pattern plus cluster fill, in reverse
+# Cuthill-McKee order or another, with Manteuffel's diagonal shift; iterations of each.
+from probe import *
+nz = np.linalg.norm(Ab, axis=(2, 3)) > 0; np.fill_diagonal(nz, False)
 def rcm():
     deg=nz.sum(1); seen=np.zeros(N,bool); order=[]
     for s in np.argsort(deg):
@@ -15,20 +12,12 @@ def rcm():
             nb=[j for j in np.nonzero(nz[i])[0] if not seen[j]]
             for j in sorted(nb,key=lambda j:deg[j]): seen[j]=True; q.append(j)
     return np.array(order[::-1])
-def clusters(th,maxc):
-    lab=-np.ones(N,int);c=0
-    for s in range(N):
-        if lab[s]>=0: continue
-        lab[s]=c; st=[s]
-        while st:
-            i=st.pop()
-            for j in np.nonzero(ratio[i]>th)[0]:
-                if lab[j]<0: lab[j]=c; st.append(j)
-        c+=1
-    fill=np.zeros((N,N),bool); sz=np.bincount(lab)
-    for c in np.nonzero((sz>=3)&(sz<=maxc))[0]:
-        m=np.nonzero(lab==c)[0]; fill[np.ix_(m,m)]=True
-    np.fill_diagonal(fill,False)
+def clusters(th, maxc):
+    """StiffClusterFill's fill: every pair inside a group of 3..maxc bodies joined above ratio th."""
+    lab = components(ratio, th)[0]; fill = np.zeros((N, N), bool); sz = np.bincount(lab)
+    for c in np.nonzero((sz >= 3) & (sz <= maxc))[0]:
+        m = np.nonzero(lab == c)[0]; fill[np.ix_(m, m)] = True
+    np.fill_diagonal(fill, False)
     return fill
 def factor(order,pattern,shift=0.0):
     inv=np.empty(N,int); inv[order]=np.arange(N)
@@ -69,7 +58,6 @@ def factor(order,pattern,shift=0.0):
     return prec
 if __name__=="__main__":
     order=rcm()
-    Mi=lambda r: Minv@r
     x,it=pcg(A,b,x0,Mi,tol); print("dumped factor: warm",it, "cold", pcg(A,b,0*x0,Mi,tol)[1], flush=True)
     configs=[("IC(0)",nz,24)]
     for th,mc in [(0.5,24),(0.4,24),(0.3,24),(0.3,64),(0.2,64)]:

@@ -2,12 +2,10 @@
 # sheared-state system: solve 1 (b) stores its search directions; Ritz pairs of M^-1 A on their span
 # (P^T A P y = theta P^T M P y); solve 2 (another right-hand side, same matrix) deflated with the k
 # lowest (A-DEF2). Also the lowest Ritz values against the true eigenvalues.
-import numpy as np
-from load import *
-n,tol,A,b,x0,Minv=load()
+from probe import *
 Ms=(Minv+Minv.T)/2
 M=np.linalg.inv(Ms)
-ev=np.load('/work/runs/defl/ev.npy')
+ev=np.load(OUT+'/ev.npy')
 def pcg_store(b,x0,maxit=500):
     x=x0.copy(); r=b-A@x; bn=np.linalg.norm(b); z=Ms@r; p=z.copy(); rz=r@z; P=[]
     for it in range(1,maxit+1):
@@ -15,9 +13,6 @@ def pcg_store(b,x0,maxit=500):
         if np.linalg.norm(r)<=tol*bn: return x,it,np.array(P).T
         z=Ms@r; rz2=r@z; p=z+(rz2/rz)*p; rz=rz2
     return x,maxit,np.array(P).T
-def adef2(Z):
-    AZ=A@Z; Ei=np.linalg.inv(Z.T@AZ)
-    return (lambda r: (lambda s: s+Z@(Ei@(Z.T@r-AZ.T@s)))(Ms@r)), AZ, Ei
 rng=np.random.default_rng(1)
 for label,start in [("cold",np.zeros(n)),("warm",x0)]:
     x,it,P=pcg_store(b,start)
@@ -32,7 +27,7 @@ for label,start in [("cold",np.zeros(n)),("warm",x0)]:
     out=[f"plain {base}"]
     for k in [1,2,4,8,12]:
         Z=P@Y[:,:k]
-        prec,AZ,Ei=adef2(Z)
+        prec=adef2(Z,lambda r: Ms@r); Ei=np.linalg.inv(Z.T@A@Z)
         s0=xs+Z@(Ei@(Z.T@(b2-A@xs)))
         out.append(f"k={k}: {pcg(A,b2,s0,prec,tol)[1]}")
     print(f"  solve 2 ({label} start):", ", ".join(out), flush=True)

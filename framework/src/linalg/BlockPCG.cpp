@@ -26,7 +26,7 @@ struct BlockPCG::Workspace {
 
   Preconditioner kind, active = Preconditioner::BlockJacobi;
   std::vector<double> shifts{BlockPCG::kDefaultShifts.begin(), BlockPCG::kDefaultShifts.end()};
-  double shift = 0.0;  // of the IC(0) factor in use
+  double shift = 0.0;  // of the IC(0) factor in use; 0 while another preconditioner is
   std::vector<Mat6> inv_diag;
   BlockIncompleteCholesky ic;
   EisenstatDilu dilu;
@@ -46,7 +46,7 @@ void BlockPCG::set_shifts(const std::vector<double>& shifts) {
   w_->shifts = shifts;
 }
 double BlockPCG::shift() const {
-  return w_->active == Preconditioner::IncompleteCholesky ? w_->shift : 0.0;
+  return w_->shift;
 }
 
 std::vector<double> BlockPCG::preconditioner_state() const {

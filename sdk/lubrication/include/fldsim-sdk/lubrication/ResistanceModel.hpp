@@ -109,7 +109,7 @@ class ResistanceModel : public HydroModel, public RunNotes {
   bool reuse_factor() const;
   // Builds the preconditioner from factor_source_ and notes a change of the one in use.
   void factorise();
-  bool falling_back_ = false;  // the last factorisation used a fallback
+  bool falling_back_ = false;  // the last factorisation needed a shift or a fallback
   std::int64_t factorisations_ = 0, fallbacks_ = 0, jacobi_fallbacks_ = 0, shifted_ = 0, breakdowns_ = 0;
   std::vector<std::string> notes_;
   bool configured_ = false;
