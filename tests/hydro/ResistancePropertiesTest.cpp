@@ -481,6 +481,41 @@ TEST(BodyResistance, ClosedFormGramBlocksEqualTheGeneralProducts) {
   EXPECT_GT(pairs, 100);  // enough pairs to mean something
 }
 
+// Dicolloid node pairs take their body blocks in the threads' pair pass, or on one thread in the
+// serial add_to (BodyResistance::update): the same function of the same numbers, so R has the same
+// bits either way (a variant computing the blocks differently on one thread fails it).
+TEST(BodyResistance, OffsetPairBlocksHaveTheSameBitsOnOneThreadAndTwo) {
+  const int threads = omp_get_max_threads();
+  int offset_pairs = 0;
+  for (const Config& setup : kSetups)
+    for (const double width : {0.0, 0.1})  // the sharp and the smooth visibility rule
+      for (const unsigned seed : {3u, 11u}) {
+        SCOPED_TRACE(std::string(setup.name) + ", width " + std::to_string(width));
+        System system(shape_of(setup), setup.n, setup.box, physics(1.0, 1.0, 0.3));
+        random_configuration(system, 0.01, seed);
+        LubricationOptions o;
+        o.visibility_width = width;
+        const NodePairList list = brute_force_pairs(system, o.cutoff);
+        const auto matrix = [&](int nthreads) {
+          omp_set_num_threads(nthreads);
+          BodyResistance lub(o);
+          lub.update(system, list);
+          std::vector<std::pair<std::uint32_t, std::uint32_t>> upper;
+          lub.body_pairs(upper);
+          BlockSparseMatrix M;
+          M.set_pattern(system.size(), upper);
+          lub.bind(M);
+          lub.add_to(M);
+          if (system.nodes_per_body() > 1 && nthreads == 1) offset_pairs += int(lub.size());
+          return M.dense();
+        };
+        const Eigen::MatrixXd one = matrix(1), two = matrix(2);
+        EXPECT_EQ((one - two).cwiseAbs().maxCoeff(), 0.0);
+      }
+  omp_set_num_threads(threads);
+  EXPECT_GT(offset_pairs, 100);
+}
+
 // The strain forces R_FE:E, the pairwise Brownian forces and the stresslet sum from the
 // closed-form pair wrenches against the general row products, summed over the same pairs (spheres
 // and dicolloids):

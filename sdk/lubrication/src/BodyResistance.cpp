@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "CrossMatrix.hpp"
+#include "VisibilityAt.hpp"
 #include "fldsim-sdk/lubrication/Visibility.hpp"
 #include "fldsim/parallel_loop.hpp"
 #include "fldsim/rigid.hpp"
@@ -15,50 +16,71 @@ using Mat3 = Eigen::Matrix3d;
 // The body-level Gram blocks of a node pair off its bodies' centres, in closed form. With the node
 // velocity U + Omega x x (rigid.hpp node_kinematics), the pair's modes over (U_i, Omega_i, U_j,
 // Omega_j) are the squeeze row (-d, -e_a, d, e_b) with e_x = x x d, the shear rows
-// (-P, M_a, P, N_b) with M_a = P[a]x + l_i [d]x and N_b = -P[b]x + l_j [d]x (both map into the plane
-// normal to d, so P M_a = M_a), the pump rows (0, P, 0, -P) and the twist row (0, d, 0, -d)
-// (LubricationPair::centred_wrench's modes). Their Gram sq s^T s + sh T^T T + pu Q^T Q + tw t^T t,
-// block by block (dd = d d^T, P = I - dd):
-//   ii = [sq dd + sh P,  sq d e_a^T - sh M_a;  (.)^T,  sq e_a e_a^T + sh M_a^T M_a + pu P + tw dd]
-//   jj = [sq dd + sh P,  sq d e_b^T + sh N_b;  (.)^T,  sq e_b e_b^T + sh N_b^T N_b + pu P + tw dd]
-//   ij = [-(sq dd + sh P),  -sq d e_b^T - sh N_b;  -sq e_a d^T + sh M_a^T,
-//         -sq e_a e_b^T + sh M_a^T N_b - pu P - tw dd]
-// This is K_a^T G K_b of the node blocks (LubricationPair::centred_gram), with three 3 x 3 products
-// per pair instead of twelve cross-product passes per block (bench/README.md, "Dicolloid node pairs
-// without carried blocks"). The rotation blocks of ii and jj are symmetrised so that R is symmetric
-// to the last bit.
-void offset_gram(const Vec3& d, const LubricationCoefficients& c, double w, const Vec3& a, const Vec3& b,
-                 Mat6& ii, Mat6& jj, Mat6& ij) {
+// (-P, M_a, P, N_b) with M_a = P[a]x + l_i [d]x and N_b = -P[b]x + l_j [d]x, the pump rows
+// (0, P, 0, -P) and the twist row (0, d, 0, -d) (LubricationPair::centred_wrench's modes); their
+// Gram is sq s^T s + sh T^T T + pu Q^T Q + tw t^T t (dd = d d^T, P = I - dd). Since P [d]x = [d]x,
+// M_a = P [c_a]x and N_b = P [c_b]x with the lever points c_a = a + l_i d and c_b = l_j d - b, and
+// with [x]x^T [y]x = (x.y) I - y x^T and d^T [c]x = (d x c)^T every block is a sum of outer
+// products (s = sq - sh):
+//   uu   = sh I + s dd                        (translation, +ii +jj, -ij)
+//   ur_a = s d e_a^T - sh [c_a]x              (ii's coupling; ij's lower left is -ur_a^T)
+//   ur_b = s d e_b^T + sh [c_b]x              (jj's coupling; ij's upper right is -ur_b)
+//   rr_a = s e_a e_a^T - sh c_a c_a^T + (sh |c_a|^2 + pu) I + (tw - pu) dd, rr_b likewise
+//   rr_ab = -s e_a e_b^T - sh c_b c_a^T + (sh c_a.c_b - pu) I - (tw - pu) dd
+// This is K_a^T G K_b of the node blocks (LubricationPair::centred_gram) in about 130 flops a pair
+// (bench/README.md, "Dicolloid node pairs: the Gram blocks as outer products"). The rotation blocks
+// of ii and jj are symmetrised so that R is symmetric to the last bit.
+//
+// The corners go to put_ii / put_jj / put_ij(row, column, value), which assign them to a pair's own
+// blocks (the threads' pair pass) or add them to R's (add_to on one thread): the same values
+// element for element either way (LubricationPair.cpp's centred_corners does the same for spheres).
+template <class PutII, class PutJJ, class PutIJ>
+void offset_corners(const Vec3& d, const LubricationCoefficients& c, double w, const Vec3& a, const Vec3& b,
+                    const PutII& put_ii, const PutJJ& put_jj, const PutIJ& put_ij) {
   const double sq = w * c.squeeze, sh = w * c.shear, pu = w * c.pump, tw = w * c.twist;
-  const Mat3 dd = d * d.transpose();
-  const Mat3 P = Mat3::Identity() - dd;
-  const Mat3 D = cross_matrix(d);
-  const Mat3 Ma = P * cross_matrix(a) + c.lever_i * D;
-  const Mat3 Nb = c.lever_j * D - P * cross_matrix(b);
+  const double s = sq - sh;
+  const Vec3 ca = a + c.lever_i * d, cb = c.lever_j * d - b;
   const Vec3 ea = a.cross(d), eb = b.cross(d);
-  const Mat3 uu = sq * dd + sh * P, rr = pu * P + tw * dd;
-  const Mat3 Mt = Ma.transpose();
-  ii.topLeftCorner<3, 3>() = uu;
-  ii.topRightCorner<3, 3>() = sq * d * ea.transpose() - sh * Ma;
-  ii.bottomLeftCorner<3, 3>() = ii.topRightCorner<3, 3>().transpose();
-  Mat3 r = sq * ea * ea.transpose() + sh * Mt * Ma + rr;
-  ii.bottomRightCorner<3, 3>() = 0.5 * (r + r.transpose());
-  jj.topLeftCorner<3, 3>() = uu;
-  jj.topRightCorner<3, 3>() = sq * d * eb.transpose() + sh * Nb;
-  jj.bottomLeftCorner<3, 3>() = jj.topRightCorner<3, 3>().transpose();
-  r = sq * eb * eb.transpose() + sh * Nb.transpose() * Nb + rr;
-  jj.bottomRightCorner<3, 3>() = 0.5 * (r + r.transpose());
-  ij.topLeftCorner<3, 3>() = -uu;
-  ij.topRightCorner<3, 3>() = -sq * d * eb.transpose() - sh * Nb;
-  ij.bottomLeftCorner<3, 3>() = sh * Mt - sq * ea * d.transpose();
-  ij.bottomRightCorner<3, 3>() = sh * Mt * Nb - sq * ea * eb.transpose() - rr;
+  const Mat3 dd = d * d.transpose();
+  Mat3 uu = s * dd;
+  uu.diagonal().array() += sh;
+  const Vec3 sd = s * d;
+  const Mat3 ur_a = sd * ea.transpose() - sh * cross_matrix(ca);
+  const Mat3 ur_b = sd * eb.transpose() + sh * cross_matrix(cb);
+  const Mat3 twist = (tw - pu) * dd;
+  const Vec3 sea = s * ea, shca = sh * ca;
+  Mat3 r = sea * ea.transpose() - shca * ca.transpose() + twist;
+  r.diagonal().array() += sh * ca.squaredNorm() + pu;
+  put_ii(0, 0, uu);
+  put_ii(0, 3, ur_a);
+  put_ii(3, 0, ur_a.transpose());
+  put_ii(3, 3, 0.5 * (r + r.transpose()));
+  r = s * eb * eb.transpose() - sh * cb * cb.transpose() + twist;
+  r.diagonal().array() += sh * cb.squaredNorm() + pu;
+  put_jj(0, 0, uu);
+  put_jj(0, 3, ur_b);
+  put_jj(3, 0, ur_b.transpose());
+  put_jj(3, 3, 0.5 * (r + r.transpose()));
+  put_ij(0, 0, -uu);
+  put_ij(0, 3, -ur_b);
+  put_ij(3, 0, -ur_a.transpose());
+  r = -sea * eb.transpose() - cb * shca.transpose() - twist;
+  r.diagonal().array() += ca.dot(cb) * sh - pu;
+  put_ij(3, 3, r);
 }
 
-// K^T of a node wrench (f, t) -> body wrench (f, t + x x f), for both nodes of a pair wrench.
-Eigen::Matrix<double, 12, 1> carried(Eigen::Matrix<double, 12, 1> w, const Vec3& xa, const Vec3& xb) {
+auto assigning(Mat6& M) {
+  return [&M](int r, int c, const auto& v) { M.block<3, 3>(r, c) = v; };
+}
+auto adding(Mat6& M) {
+  return [&M](int r, int c, const auto& v) { M.block<3, 3>(r, c) += v; };
+}
+
+// K^T of a node wrench (f, t) -> body wrench (f, t + x x f), for both nodes of a pair wrench, in
+// place (a copy in and out by value was 8 % of a dicolloid assembly).
+void carry(Eigen::Matrix<double, 12, 1>& w, const Vec3& xa, const Vec3& xb) {
   w.segment<3>(3) += xa.cross(Vec3(w.segment<3>(0)));
   w.segment<3>(9) += xb.cross(Vec3(w.segment<3>(6)));
-  return w;
 }
 
 // K of a body velocity (U, Omega) -> node velocity (U + Omega x x, Omega).
@@ -96,8 +118,8 @@ bool BodyResistance::update(const System& system, const NodePairList& pairs) {
     // of the list's skin end here. With one node per body (spheres) no sibling can hide a node.
     if (dist >= options_.cutoff * 0.5 * (a_a + a_b)) continue;
     const double w = m == 1 ? 1.0
-                            : visibility_weight(off_i, off_j, radii_.data(), m, p.node_a, p.node_b, p.r,
-                                                options_.cutoff, options_.visibility_width);
+                            : visibility_weight_at(off_i, off_j, radii_.data(), m, p.node_a, p.node_b, p.r,
+                                                   dist, options_.cutoff, options_.visibility_width);
     if (w == 0.0) continue;
     const Vec3 centres = p.r - off_j[p.node_b] + off_i[p.node_a];
     candidates_.push_back(
@@ -124,6 +146,7 @@ bool BodyResistance::update(const System& system, const NodePairList& pairs) {
   rows_.resize(closed_forms_ ? 0 : accepted_.size());  // the general path only
 
   const double mu = system.physics().viscosity;
+  blocks_in_pair_pass_ = !single_thread();
   parallel_for(std::int64_t(accepted_.size()), [&](std::int64_t k) {
     const Accepted& p = accepted_[k];
     LubricationCoefficients c;
@@ -133,12 +156,16 @@ bool BodyResistance::update(const System& system, const NodePairList& pairs) {
       // The pair is its direction and coefficients: its node-level Gram blocks, strain force,
       // Brownian force and stresslet follow in closed form (LubricationPair::centred_*), cheaper
       // than forming and streaming the 8 x 12 rows. Nodes at their bodies' centres (spheres) take
-      // their Gram blocks in add_to; off-centre nodes (dicolloids) get their body blocks here in
-      // closed form (offset_gram()), instead of three 6 x 8 x 6 Gram products.
+      // their Gram blocks in add_to; off-centre nodes (dicolloids) get their body blocks in closed
+      // form (offset_corners()): here when threads share this pass, else in add_to, where the three
+      // 6 x 6 blocks go straight into R instead of through 864 bytes a pair of memory (the same
+      // function of the same numbers: the same bits either way).
       c = LubricationPair::coefficients(radii_[p.node_a], radii_[p.node_b], p.distance, mu, options_);
       const bool offset = !(xa.isZero(0.0) && xb.isZero(0.0));
       closed_[k] = {p.separation / p.distance, c, p.weight, xa, xb, true, offset};
-      if (offset) offset_gram(closed_[k].d, c, p.weight, xa, xb, block_ii_[k], block_jj_[k], block_ij_[k]);
+      if (offset && blocks_in_pair_pass_)
+        offset_corners(closed_[k].d, c, p.weight, xa, xb, assigning(block_ii_[k]), assigning(block_jj_[k]),
+                       assigning(block_ij_[k]));
       return;
     }
     // The general path (set_closed_forms(false), the tests' reference): body rows and Gram products.
@@ -204,6 +231,12 @@ void BodyResistance::add_to(BlockSparseMatrix& A) const {
     if (const ClosedForm& c = closed_[k]; c.on && !c.offset) {
       LubricationPair::add_centred_gram(c.d, c.c, c.weight, A.diagonal(p.body_i), A.diagonal(p.body_j),
                                         A.upper(p.upper), p.opens_block);
+    } else if (c.on && !blocks_in_pair_pass_) {
+      Mat6 &Rii = A.diagonal(p.body_i), &Rjj = A.diagonal(p.body_j), &Rij = A.upper(p.upper);
+      if (p.opens_block)
+        offset_corners(c.d, c.c, c.weight, c.xa, c.xb, adding(Rii), adding(Rjj), assigning(Rij));
+      else
+        offset_corners(c.d, c.c, c.weight, c.xa, c.xb, adding(Rii), adding(Rjj), adding(Rij));
     } else {
       add(block_ii_[k], block_jj_[k], block_ij_[k]);
     }
@@ -231,9 +264,8 @@ void BodyResistance::add_strain_force(const Eigen::Matrix3d& E, double* rhs) {
     // Mode velocities of the ambient flow: only the relative velocity E L_ij of node j enters
     // (the rigid part Omega_inf cancels in every mode).
     if (const ClosedForm& c = closed_[k]; c.on) {
-      const Eigen::Matrix<double, 12, 1> w =
-          LubricationPair::centred_strain_wrench(c.d, c.c, c.weight, E * accepted_[k].arm);
-      pair_force_[k] = c.offset ? carried(w, c.xa, c.xb) : w;
+      pair_force_[k] = LubricationPair::centred_strain_wrench(c.d, c.c, c.weight, E * accepted_[k].arm);
+      if (c.offset) carry(pair_force_[k], c.xa, c.xb);
       return;
     }
     const Eigen::Matrix<double, LubricationPair::kRows, 1> e =
@@ -258,8 +290,9 @@ void BodyResistance::add_brownian(const RandomStream& noise, std::size_t nodes_p
       beta[2 * q + 1] = g[1];
     }
     if (const ClosedForm& c = closed_[k]; c.on) {
-      const Eigen::Matrix<double, 12, 1> w = LubricationPair::centred_noise(c.d, c.c, c.weight, beta);
-      pair_force_[k] = scale * (c.offset ? carried(w, c.xa, c.xb) : w);
+      pair_force_[k] = LubricationPair::centred_noise(c.d, c.c, c.weight, beta);
+      if (c.offset) carry(pair_force_[k], c.xa, c.xb);
+      pair_force_[k] *= scale;
       return;
     }
     pair_force_[k] = scale * rows_[k].transpose().lazyProduct(beta);

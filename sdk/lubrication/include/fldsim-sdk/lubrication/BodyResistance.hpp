@@ -11,7 +11,8 @@
 // to rounding (tests/hydro/ResistancePropertiesTest.cpp). A pair's visibility weight w scales its rows by
 // sqrt(w), hence its resistance and stresslet by w and its Brownian force by sqrt(w) (fluctuation-dissipation
 // kept). Pair work is done in parallel into per-pair buffers and then summed per body in pair order, so
-// results do not depend on the thread count.
+// results do not depend on the thread count (on one thread the body blocks of off-centre node pairs
+// are evaluated in add_to, straight into R: the same function of the same numbers).
 #pragma once
 
 #include <cstdint>
@@ -109,6 +110,7 @@ class BodyResistance {
   std::vector<double> radii_;
   std::vector<std::uint8_t> opened_;  // scratch of bind(): blocks that already have a first pair
   bool closed_forms_ = true;
+  bool blocks_in_pair_pass_ = false;  // offset pairs' Gram blocks: in update()'s threads, else in add_to
 };
 
 }  // namespace fldsim::hydro
