@@ -315,7 +315,7 @@ Eigen::Matrix3d BodyResistance::stresslet_sum(const Eigen::Matrix3d& E, const do
         v << dUi, dUj;
       v.segment<3>(6) += E * p.arm;
       // The force on node j is the force on body j (K^T leaves forces alone).
-      Fj = LubricationPair::centred_wrench(c.d, c.c, c.weight, v).segment<3>(6);
+      Fj = LubricationPair::centred_force_j(c.d, c.c, c.weight, v);
     } else {
       const BodyRows& B = rows_[k];
       const Eigen::Matrix<double, LubricationPair::kRows, 1> y = B.leftCols<6>().lazyProduct(dUi) +

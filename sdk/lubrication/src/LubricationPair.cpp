@@ -153,20 +153,39 @@ void LubricationPair::add_centred_gram(const Vec3& d, const LubricationCoefficie
     centred_corners(d, c, w, add_to(Rii), add_to(Rjj), add_to(Rij));
 }
 
+namespace {
+// The translational part of centred_wrench: the tangential t = c_sh (P du + l_i d x w_i + l_j d x w_j)
+// and the force f = c_sq (d.du) d + t on node j's velocity (both weighted by w).
+struct CentredForce {
+  Vec3 t, f;
+};
+CentredForce centred_force_parts(const Vec3& d, const LubricationCoefficients& c, double w,
+                                 const Eigen::Matrix<double, 12, 1>& v) {
+  const Vec3 du = v.segment<3>(6) - v.segment<3>(0);
+  const Vec3 wi = v.segment<3>(3), wj = v.segment<3>(9);
+  const double d_du = d.dot(du);
+  // Tangential parts: P du = du - (d.du) d; d x w is tangential already.
+  const Vec3 t = (w * c.shear) * (du - d_du * d + c.lever_i * d.cross(wi) + c.lever_j * d.cross(wj));
+  return {t, (w * c.squeeze * d_du) * d + t};
+}
+}  // namespace
+
 Eigen::Matrix<double, 12, 1> LubricationPair::centred_wrench(const Vec3& d, const LubricationCoefficients& c,
                                                              double w,
                                                              const Eigen::Matrix<double, 12, 1>& v) {
-  const Vec3 du = v.segment<3>(6) - v.segment<3>(0);
-  const Vec3 wi = v.segment<3>(3), wj = v.segment<3>(9), dw = wi - wj;
-  const double d_du = d.dot(du), d_dw = d.dot(dw);
-  // Tangential parts: P du = du - (d.du) d; d x w is tangential already.
-  const Vec3 t = (w * c.shear) * (du - d_du * d + c.lever_i * d.cross(wi) + c.lever_j * d.cross(wj));
-  const Vec3 f = (w * c.squeeze * d_du) * d + t;  // (S^T S v) on u_j; minus it on u_i
+  const auto [t, f] = centred_force_parts(d, c, w, v);  // (S^T S v) on u_j; minus it on u_i
+  const Vec3 dw = v.segment<3>(3) - v.segment<3>(9);
+  const double d_dw = d.dot(dw);
   const Vec3 rot = (w * c.pump) * (dw - d_dw * d) + (w * c.twist * d_dw) * d;
   const Vec3 dxt = d.cross(t);
   Eigen::Matrix<double, 12, 1> out;
   out << f, c.lever_i * dxt - rot, -f, c.lever_j * dxt + rot;  // -S^T S v
   return out;
+}
+
+Vec3 LubricationPair::centred_force_j(const Vec3& d, const LubricationCoefficients& c, double w,
+                                      const Eigen::Matrix<double, 12, 1>& v) {
+  return -centred_force_parts(d, c, w, v).f;
 }
 
 Eigen::Matrix<double, 12, 1> LubricationPair::centred_strain_wrench(const Vec3& d,

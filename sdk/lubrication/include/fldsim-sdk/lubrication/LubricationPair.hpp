@@ -111,6 +111,10 @@ class LubricationPair {
   // The pair stresslets use it (node velocities; BodyResistance carries them from the bodies).
   static Eigen::Matrix<double, 12, 1> centred_wrench(const Vec3& d, const LubricationCoefficients& c,
                                                      double w, const Eigen::Matrix<double, 12, 1>& v);
+  // The force on node j of centred_wrench alone (its elements 6-8, the same operations and bits),
+  // for the pair stresslets, which need no torques.
+  static Vec3 centred_force_j(const Vec3& d, const LubricationCoefficients& c, double w,
+                              const Eigen::Matrix<double, 12, 1>& v);
   // centred_wrench for v = (0, 0, du, 0), the strain force's only velocity (E L on node j): the
   // terms of the zero velocities dropped, otherwise the same operations (equal to centred_wrench
   // up to the sign of zeros).
