@@ -46,6 +46,11 @@ Variants (one change each against the current defaults):
                Kumar & Higdon's R_0 fit for it)
   squeeze      log_terms: false with fldsim's other forms (twist kept, smooth taper)
   nopump       pump: none (an ablation: no counter-rotation mode, the other forms fldsim's)
+  dminX        repulsion delta_min X a (the paper's 1e-3 a; the force at the clamp scales with it, so a
+               shorter range is also a weaker, overlapping contact); lammps-dmin1e-4: with LAMMPS's
+               forms; dnum1e-3, dnum1e-2: hydro delta_num 1e-3 a, 1e-2 a (LAMMPS's documented inner
+               cutoff 2.01): the contact model, which the paper fixes but which sets how close
+               colliding dumbbells come
   peP-phi0.1   Brownian fused dumbbells at phi 0.1 and Pe P = 0.1 ... 1000 (-r2: other seeds)
   peP-phi0.5   Brownian fused dumbbells at phi 0.5 and Pe P = 1 ... 1000, strains 0-60 (a first look)
 """
@@ -78,6 +83,18 @@ VARIANTS = {
     "nopump": {"hydro": "pump: none"},
     "nopump-replica": {"hydro": "pump: none", "seed": (2, 43)},
     "smoothvis": {"hydro": "visibility: smooth"},
+    "dmin1e-2": {"repulsion": "delta_min: 0.01"},
+    "dmin1e-2-replica": {"repulsion": "delta_min: 0.01", "seed": (2, 43)},
+    "dmin1e-4": {"repulsion": "delta_min: 0.0001"},
+    "dmin1e-4-replica": {"repulsion": "delta_min: 0.0001", "seed": (2, 43)},
+    "dmin3e-4": {"repulsion": "delta_min: 0.0003"},
+    "dmin3e-5": {"repulsion": "delta_min: 3.0e-5"},
+    "lammps-dmin1e-4": {"repulsion": "delta_min: 0.0001", "hydro": "conventions: lammps"},
+    "lammpslens-dmin1e-4": {"repulsion": "delta_min: 0.0001", "hydro": "conventions: lammps", "phi": 0.2531},
+    "lammpslens-dmin1e-4-replica": {"repulsion": "delta_min: 0.0001", "hydro": "conventions: lammps", "phi": 0.2531,
+                                    "seed": (2, 43)},
+    "dnum1e-3": {"hydro": "delta_num: 0.001"},
+    "dnum1e-2": {"hydro": "delta_num: 0.01"},
     "lammpslens-smoothvis": {"hydro": "conventions: lammps, visibility: smooth", "phi": 0.2531},
     "lammpslens-smoothvis-replica": {"hydro": "conventions: lammps, visibility: smooth", "phi": 0.2531,
                                      "seed": (2, 43)},
@@ -125,6 +142,11 @@ VARIANTS["nolog-phi0.3-n1000"] = dict(LONG, phi=0.3, tolerance="1.0e-3", count=1
 VARIANTS["lammps-n1000-long"] = dict(LONG, count=1000, hydro="conventions: lammps")
 # ... and the pump ablation at that size.
 VARIANTS["nopump-phi0.3-n1000"] = dict(LONG, phi=0.3, tolerance="1.0e-3", count=1000, hydro="pump: none")
+# The combination that gives the paper's sign at N 216 (LAMMPS's forms, the lens reading of phi and a
+# repulsion range of 1e-4 a instead of the paper's 1e-3 a; docs/paper-sensitivity.md, "The contact
+# model") at the paper's size.
+VARIANTS["lammpslens-dmin1e-4-n1000"] = dict(LONG, phi=0.2531, tolerance="1.0e-3", count=1000,
+                                             hydro="conventions: lammps", repulsion="delta_min: 0.0001")
 # ... and the default forms at that tolerance, for a like-for-like pair at phi 0.2.
 VARIANTS["phi0.2-n1000-t3"] = dict(LONG, phi=0.2, tolerance="1.0e-3", count=1000)
 # The paper's Pe sweep (its Fig. 8f: delta_theta_m rising with Pe) at phi 0.1, where fldsim's
@@ -148,16 +170,20 @@ for _pe in [1, 1000]:
                                            "count": 1000}
 VARIANTS["long"] = dict(LONG)
 for _name in ["lammps", "lens", "lammpslens", "oldforms", "notaper", "lammpslens-smoothvis",
-              "lammpslens-smoothvis-replica", "nolog", "squeeze", "nopump"]:
+              "lammpslens-smoothvis-replica", "nolog", "squeeze", "nopump", "dmin1e-2", "dmin1e-4", "dnum1e-3",
+              "dmin1e-4-replica", "dmin3e-4", "dmin3e-5", "lammps-dmin1e-4", "lammpslens-dmin1e-4", "lammpslens-dmin1e-4-replica"]:
     VARIANTS["long-" + _name] = dict(VARIANTS[_name], **LONG)
 BROWNIAN = ["baseline", "lammps", "lens", "lammpslens", "notaper", "isobody", "rep100", "replica", "oldforms",
-            "smoothvis", "lammpslens-smoothvis", "nolog", "squeeze", "lammps-n1000-long"] + [v for v in VARIANTS if v.startswith("pe")]
+            "smoothvis", "lammpslens-smoothvis", "nolog", "squeeze", "lammps-n1000-long", "dmin1e-4", "lammps-dmin1e-4", "lammpslens-dmin1e-4",
+            "long-lammpslens-dmin1e-4", "long-lammpslens-dmin1e-4-replica"] + [v for v in VARIANTS if v.startswith("pe")]
 NOBROWN = ["baseline", "replica", "lammps", "oldforms", "lens", "isobody", "rep100", "lammpslens", "notaper", "centrearm", "lever", "pump", "twist", "khfit", "long",
            "long-lammps", "long-lens", "long-lammpslens", "long-oldforms", "long-notaper", "n1000", "fixeddt",
            "smoothvis", "lammpslens-smoothvis", "lammpslens-smoothvis-replica", "lammps-smoothvis",
            "lens-smoothvis", "lammpslens-smoothvis005", "lammpslens-smoothvis02", "long-lammpslens-smoothvis",
            "long-lammpslens-smoothvis-replica", "nolog", "squeeze", "nolog-replica", "long-nolog",
-           "long-squeeze", "nolog-phi0.3-n1000", "nopump", "nopump-replica", "long-nopump", "nopump-phi0.3-n1000"] + [v for v in VARIANTS if "phi" in v and v[:3] in ("phi", "hom", "lam")]
+           "long-squeeze", "nolog-phi0.3-n1000", "nopump", "nopump-replica", "long-nopump", "nopump-phi0.3-n1000", "dmin1e-2", "dmin1e-2-replica", "dnum1e-3", "dnum1e-2", "dmin1e-4", "long-dmin1e-2", "long-dmin1e-4",
+           "long-dnum1e-3", "long-dmin1e-4-replica", "long-dmin3e-4", "long-dmin3e-5", "long-lammps-dmin1e-4",
+           "long-lammpslens-dmin1e-4", "long-lammpslens-dmin1e-4-replica", "lammpslens-dmin1e-4-n1000"] + [v for v in VARIANTS if "phi" in v and v[:3] in ("phi", "hom", "lam")]
 
 
 def experiment(name, variant, brownian):
@@ -190,7 +216,7 @@ system:
 flow: {flow}
 hydro: {hydro}
 forces:
-  - {{plugin: repulsion, prefactor: {v.get('prefactor', 10):g}, unit: paper}}
+  - {{plugin: repulsion, prefactor: {v.get('prefactor', 10):g}, unit: paper{", " + v["repulsion"] if "repulsion" in v else ""}}}
 run: {run}
 observers:
   - {{plugin: orientation, every: {every}, start: {start:g}}}
