@@ -451,6 +451,17 @@ int for_pairs_two_ways(Check check) {
   return pairs;
 }
 
+// R_delta of the pairs lub has seen (update()), as a dense matrix (binds lub to it).
+Eigen::MatrixXd dense_resistance(BodyResistance& lub, const System& system) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> upper;
+  lub.body_pairs(upper);
+  BlockSparseMatrix M;
+  M.set_pattern(system.size(), upper);
+  lub.bind(M);
+  lub.add_to(M);
+  return M.dense();
+}
+
 double max_abs(const std::vector<double>& v) {
   double m = 0.0;
   for (const double x : v) m = std::max(m, std::abs(x));
@@ -463,16 +474,7 @@ double max_abs(const std::vector<double>& v) {
 TEST(BodyResistance, ClosedFormGramBlocksEqualTheGeneralProducts) {
   const int pairs =
       for_pairs_two_ways([](BodyResistance& closed, BodyResistance& general, const System& system) {
-        const auto matrix = [&](BodyResistance& lub) {
-          std::vector<std::pair<std::uint32_t, std::uint32_t>> upper;
-          lub.body_pairs(upper);
-          BlockSparseMatrix M;
-          M.set_pattern(system.size(), upper);
-          lub.bind(M);
-          lub.add_to(M);
-          return M.dense();
-        };
-        const Eigen::MatrixXd Ra = matrix(closed), Rb = matrix(general);
+        const Eigen::MatrixXd Ra = dense_resistance(closed, system), Rb = dense_resistance(general, system);
         const double scale = Rb.cwiseAbs().maxCoeff();
         ASSERT_GT(scale, 0.0);
         EXPECT_LE((Ra - Rb).cwiseAbs().maxCoeff(), 1e-13 * scale);
@@ -500,14 +502,8 @@ TEST(BodyResistance, OffsetPairBlocksHaveTheSameBitsOnOneThreadAndTwo) {
           omp_set_num_threads(nthreads);
           BodyResistance lub(o);
           lub.update(system, list);
-          std::vector<std::pair<std::uint32_t, std::uint32_t>> upper;
-          lub.body_pairs(upper);
-          BlockSparseMatrix M;
-          M.set_pattern(system.size(), upper);
-          lub.bind(M);
-          lub.add_to(M);
           if (system.nodes_per_body() > 1 && nthreads == 1) offset_pairs += int(lub.size());
-          return M.dense();
+          return dense_resistance(lub, system);
         };
         const Eigen::MatrixXd one = matrix(1), two = matrix(2);
         EXPECT_EQ((one - two).cwiseAbs().maxCoeff(), 0.0);
