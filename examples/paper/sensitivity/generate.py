@@ -147,6 +147,9 @@ VARIANTS["nopump-phi0.3-n1000"] = dict(LONG, phi=0.3, tolerance="1.0e-3", count=
 # model") at the paper's size.
 VARIANTS["lammpslens-dmin1e-4-n1000"] = dict(LONG, phi=0.2531, tolerance="1.0e-3", count=1000,
                                              hydro="conventions: lammps", repulsion="delta_min: 0.0001")
+# ... and with Brownian motion at Pe 1000 (the paper's dt 1e-3 strain; about an hour on one core).
+VARIANTS["lammpslens-dmin1e-4-n1000-long"] = dict(LONG, phi=0.2531, count=1000, hydro="conventions: lammps",
+                                                      repulsion="delta_min: 0.0001")
 # ... and the default forms at that tolerance, for a like-for-like pair at phi 0.2.
 VARIANTS["phi0.2-n1000-t3"] = dict(LONG, phi=0.2, tolerance="1.0e-3", count=1000)
 # The paper's Pe sweep (its Fig. 8f: delta_theta_m rising with Pe) at phi 0.1, where fldsim's
@@ -175,7 +178,7 @@ for _name in ["lammps", "lens", "lammpslens", "oldforms", "notaper", "lammpslens
     VARIANTS["long-" + _name] = dict(VARIANTS[_name], **LONG)
 BROWNIAN = ["baseline", "lammps", "lens", "lammpslens", "notaper", "isobody", "rep100", "replica", "oldforms",
             "smoothvis", "lammpslens-smoothvis", "nolog", "squeeze", "lammps-n1000-long", "dmin1e-4", "lammps-dmin1e-4", "lammpslens-dmin1e-4",
-            "long-lammpslens-dmin1e-4", "long-lammpslens-dmin1e-4-replica"] + [v for v in VARIANTS if v.startswith("pe")]
+            "long-lammpslens-dmin1e-4", "long-lammpslens-dmin1e-4-replica", "lammpslens-dmin1e-4-n1000-long"] + [v for v in VARIANTS if v.startswith("pe")]
 NOBROWN = ["baseline", "replica", "lammps", "oldforms", "lens", "isobody", "rep100", "lammpslens", "notaper", "centrearm", "lever", "pump", "twist", "khfit", "long",
            "long-lammps", "long-lens", "long-lammpslens", "long-oldforms", "long-notaper", "n1000", "fixeddt",
            "smoothvis", "lammpslens-smoothvis", "lammpslens-smoothvis-replica", "lammps-smoothvis",
