@@ -142,6 +142,11 @@ VARIANTS["nolog-phi0.3-n1000"] = dict(LONG, phi=0.3, tolerance="1.0e-3", count=1
 VARIANTS["lammps-n1000-long"] = dict(LONG, count=1000, hydro="conventions: lammps")
 # ... and the pump ablation at that size.
 VARIANTS["nopump-phi0.3-n1000"] = dict(LONG, phi=0.3, tolerance="1.0e-3", count=1000, hydro="pump: none")
+# ... with the repulsion's wall for overlapping nodes (instead of the clamp's plateau), so that
+# Brownian kicks do not leave the short contact overlapped.
+for _rep, _seed in [("", (1, 42)), ("-replica", (2, 43))]:
+    VARIANTS[f"long-lammpslens-dmin1e-4{_rep}-wall"] = dict(LONG, phi=0.2531, hydro="conventions: lammps", seed=_seed,
+                                                          repulsion="delta_min: 0.0001, overlap: wall")
 # The combination that gives the paper's sign at N 216 (LAMMPS's forms, the lens reading of phi and a
 # repulsion range of 1e-4 a instead of the paper's 1e-3 a; docs/paper-sensitivity.md, "The contact
 # model") at the paper's size.
@@ -178,7 +183,8 @@ for _name in ["lammps", "lens", "lammpslens", "oldforms", "notaper", "lammpslens
     VARIANTS["long-" + _name] = dict(VARIANTS[_name], **LONG)
 BROWNIAN = ["baseline", "lammps", "lens", "lammpslens", "notaper", "isobody", "rep100", "replica", "oldforms",
             "smoothvis", "lammpslens-smoothvis", "nolog", "squeeze", "lammps-n1000-long", "dmin1e-4", "lammps-dmin1e-4", "lammpslens-dmin1e-4",
-            "long-lammpslens-dmin1e-4", "long-lammpslens-dmin1e-4-replica", "lammpslens-dmin1e-4-n1000-long"] + [v for v in VARIANTS if v.startswith("pe")]
+            "long-lammpslens-dmin1e-4", "long-lammpslens-dmin1e-4-replica", "lammpslens-dmin1e-4-n1000-long",
+            "long-lammpslens-dmin1e-4-wall", "long-lammpslens-dmin1e-4-replica-wall"] + [v for v in VARIANTS if v.startswith("pe")]
 NOBROWN = ["baseline", "replica", "lammps", "oldforms", "lens", "isobody", "rep100", "lammpslens", "notaper", "centrearm", "lever", "pump", "twist", "khfit", "long",
            "long-lammps", "long-lens", "long-lammpslens", "long-oldforms", "long-notaper", "n1000", "fixeddt",
            "smoothvis", "lammpslens-smoothvis", "lammpslens-smoothvis-replica", "lammps-smoothvis",
@@ -186,7 +192,8 @@ NOBROWN = ["baseline", "replica", "lammps", "oldforms", "lens", "isobody", "rep1
            "long-lammpslens-smoothvis-replica", "nolog", "squeeze", "nolog-replica", "long-nolog",
            "long-squeeze", "nolog-phi0.3-n1000", "nopump", "nopump-replica", "long-nopump", "nopump-phi0.3-n1000", "dmin1e-2", "dmin1e-2-replica", "dnum1e-3", "dnum1e-2", "dmin1e-4", "long-dmin1e-2", "long-dmin1e-4",
            "long-dnum1e-3", "long-dmin1e-4-replica", "long-dmin3e-4", "long-dmin3e-5", "long-lammps-dmin1e-4",
-           "long-lammpslens-dmin1e-4", "long-lammpslens-dmin1e-4-replica", "lammpslens-dmin1e-4-n1000"] + [v for v in VARIANTS if "phi" in v and v[:3] in ("phi", "hom", "lam")]
+           "long-lammpslens-dmin1e-4", "long-lammpslens-dmin1e-4-replica", "lammpslens-dmin1e-4-n1000",
+           "long-lammpslens-dmin1e-4-wall"] + [v for v in VARIANTS if "phi" in v and v[:3] in ("phi", "hom", "lam")]
 
 
 def experiment(name, variant, brownian):
