@@ -147,6 +147,10 @@ VARIANTS["nopump-phi0.3-n1000"] = dict(LONG, phi=0.3, tolerance="1.0e-3", count=
 for _rep, _seed in [("", (1, 42)), ("-replica", (2, 43))]:
     VARIANTS[f"long-lammpslens-dmin1e-4{_rep}-wall"] = dict(LONG, phi=0.2531, hydro="conventions: lammps", seed=_seed,
                                                           repulsion="delta_min: 0.0001, overlap: wall")
+# ... with the short range but the paper's force at the clamp (prefactor x 10: 12.5 C_p at delta_num as
+# with delta_min 1e-3 a), a hard short contact rather than a weak one.
+VARIANTS["long-lammpslens-dmin1e-4-rep100"] = dict(LONG, phi=0.2531, hydro="conventions: lammps", prefactor=100,
+                                                   repulsion="delta_min: 0.0001")
 # The combination that gives the paper's sign at N 216 (LAMMPS's forms, the lens reading of phi and a
 # repulsion range of 1e-4 a instead of the paper's 1e-3 a; docs/paper-sensitivity.md, "The contact
 # model") at the paper's size.
@@ -184,7 +188,7 @@ for _name in ["lammps", "lens", "lammpslens", "oldforms", "notaper", "lammpslens
 BROWNIAN = ["baseline", "lammps", "lens", "lammpslens", "notaper", "isobody", "rep100", "replica", "oldforms",
             "smoothvis", "lammpslens-smoothvis", "nolog", "squeeze", "lammps-n1000-long", "dmin1e-4", "lammps-dmin1e-4", "lammpslens-dmin1e-4",
             "long-lammpslens-dmin1e-4", "long-lammpslens-dmin1e-4-replica", "lammpslens-dmin1e-4-n1000-long",
-            "long-lammpslens-dmin1e-4-wall", "long-lammpslens-dmin1e-4-replica-wall"] + [v for v in VARIANTS if v.startswith("pe")]
+            "long-lammpslens-dmin1e-4-wall", "long-lammpslens-dmin1e-4-replica-wall", "long-lammpslens-dmin1e-4-rep100"] + [v for v in VARIANTS if v.startswith("pe")]
 NOBROWN = ["baseline", "replica", "lammps", "oldforms", "lens", "isobody", "rep100", "lammpslens", "notaper", "centrearm", "lever", "pump", "twist", "khfit", "long",
            "long-lammps", "long-lens", "long-lammpslens", "long-oldforms", "long-notaper", "n1000", "fixeddt",
            "smoothvis", "lammpslens-smoothvis", "lammpslens-smoothvis-replica", "lammps-smoothvis",
@@ -193,7 +197,7 @@ NOBROWN = ["baseline", "replica", "lammps", "oldforms", "lens", "isobody", "rep1
            "long-squeeze", "nolog-phi0.3-n1000", "nopump", "nopump-replica", "long-nopump", "nopump-phi0.3-n1000", "dmin1e-2", "dmin1e-2-replica", "dnum1e-3", "dnum1e-2", "dmin1e-4", "long-dmin1e-2", "long-dmin1e-4",
            "long-dnum1e-3", "long-dmin1e-4-replica", "long-dmin3e-4", "long-dmin3e-5", "long-lammps-dmin1e-4",
            "long-lammpslens-dmin1e-4", "long-lammpslens-dmin1e-4-replica", "lammpslens-dmin1e-4-n1000",
-           "long-lammpslens-dmin1e-4-wall"] + [v for v in VARIANTS if "phi" in v and v[:3] in ("phi", "hom", "lam")]
+           "long-lammpslens-dmin1e-4-wall", "long-lammpslens-dmin1e-4-rep100"] + [v for v in VARIANTS if "phi" in v and v[:3] in ("phi", "hom", "lam")]
 
 
 def experiment(name, variant, brownian):
