@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "BlockCorners.hpp"
 #include "CrossMatrix.hpp"
 #include "VisibilityAt.hpp"
 #include "fldsim-sdk/lubrication/Visibility.hpp"
@@ -33,7 +34,8 @@ using Mat3 = Eigen::Matrix3d;
 //
 // The corners go to put_ii / put_jj / put_ij(row, column, value), which assign them to a pair's own
 // blocks (the threads' pair pass) or add them to R's (add_to on one thread): the same values
-// element for element either way (LubricationPair.cpp's centred_corners does the same for spheres).
+// element for element either way (BlockCorners.hpp; LubricationPair.cpp's centred_corners does the
+// same for spheres).
 template <class PutII, class PutJJ, class PutIJ>
 void offset_corners(const Vec3& d, const LubricationCoefficients& c, double w, const Vec3& a, const Vec3& b,
                     const PutII& put_ii, const PutJJ& put_jj, const PutIJ& put_ij) {
@@ -67,13 +69,6 @@ void offset_corners(const Vec3& d, const LubricationCoefficients& c, double w, c
   r = -sea * eb.transpose() - cb * shca.transpose() - twist;
   r.diagonal().array() += ca.dot(cb) * sh - pu;
   put_ij(3, 3, r);
-}
-
-auto assigning(Mat6& M) {
-  return [&M](int r, int c, const auto& v) { M.block<3, 3>(r, c) = v; };
-}
-auto adding(Mat6& M) {
-  return [&M](int r, int c, const auto& v) { M.block<3, 3>(r, c) += v; };
 }
 
 // K^T of a node wrench (f, t) -> body wrench (f, t + x x f), for both nodes of a pair wrench, in

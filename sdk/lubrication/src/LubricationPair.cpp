@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "BlockCorners.hpp"
 #include "CrossMatrix.hpp"
 
 namespace fldsim::hydro {
@@ -132,25 +133,19 @@ void centred_corners(const Vec3& d, const LubricationCoefficients& c, double w, 
   put_ij(3, 3, (sh * li * lj - pu) * P - tw * dd);
 }
 
-auto assign_to(Mat6& M) {
-  return [&M](int r, int c, const auto& v) { M.block<3, 3>(r, c) = v; };
-}
-auto add_to(Mat6& M) {
-  return [&M](int r, int c, const auto& v) { M.block<3, 3>(r, c) += v; };
-}
 }  // namespace
 
 void LubricationPair::centred_gram(const Vec3& d, const LubricationCoefficients& c, double w, Mat6& ii,
                                    Mat6& jj, Mat6& ij) {
-  centred_corners(d, c, w, assign_to(ii), assign_to(jj), assign_to(ij));
+  centred_corners(d, c, w, assigning(ii), assigning(jj), assigning(ij));
 }
 
 void LubricationPair::add_centred_gram(const Vec3& d, const LubricationCoefficients& c, double w, Mat6& Rii,
                                        Mat6& Rjj, Mat6& Rij, bool assign_ij) {
   if (assign_ij)
-    centred_corners(d, c, w, add_to(Rii), add_to(Rjj), assign_to(Rij));
+    centred_corners(d, c, w, adding(Rii), adding(Rjj), assigning(Rij));
   else
-    centred_corners(d, c, w, add_to(Rii), add_to(Rjj), add_to(Rij));
+    centred_corners(d, c, w, adding(Rii), adding(Rjj), adding(Rij));
 }
 
 namespace {
