@@ -69,7 +69,12 @@ BrownianEquilibrium run_brownian(const EquilibriumScene& scene, const BrownianOp
   auto repulsion = make<ForceLaw>("force", "repulsion", scene.force_params);
   sc.finish(make<HydroModel>("hydro", scene.hydro, scene.hydro_params), {repulsion},
             HydroRequest{true, false, opt.stress_every > 0});
-  EulerMaruyama integrator(opt.seed, true, opt.drift, s.size(), opt.rejected);
+  std::unique_ptr<TimeIntegrator> integrator_owner;
+  if (opt.rk3)
+    integrator_owner = std::make_unique<RungeKutta3>(opt.seed, s.size(), opt.rejected);
+  else
+    integrator_owner = std::make_unique<EulerMaruyama>(opt.seed, true, opt.drift, s.size(), opt.rejected);
+  TimeIntegrator& integrator = *integrator_owner;
 
   const std::int64_t warm = std::llround(opt.equilibrate / opt.dt);
   const std::int64_t per_block = std::llround(opt.duration / opt.dt) / opt.sample_every / opt.blocks;
@@ -93,7 +98,7 @@ BrownianEquilibrium run_brownian(const EquilibriumScene& scene, const BrownianOp
   StepGuard guard;
   guard.max_overlap = opt.max_overlap;
   StepLoop loop(s, integrator, *sc.evaluator, sc.list, observers, info, true,
-                opt.drift == DriftScheme::Midpoint, control, guard);
+                !opt.rk3 && opt.drift == DriftScheme::Midpoint, control, guard);
   std::unique_ptr<BrownianStressProbe> probe;
   if (opt.stress_every > 0 && opt.probe_brownian_stress) {
     // As Simulation makes it: the model's own copy with the probe's solve tolerance.

@@ -32,6 +32,7 @@ struct EquilibriumScene {
 struct BrownianOptions {
   double dt = 1e-3;  // a^2/D0
   DriftScheme drift = DriftScheme::Midpoint;
+  bool rk3 = false;  // the paper's RK3 with frozen Brownian forces instead of Euler-Maruyama (fixed dt)
   double equilibrate = 1.0;        // a^2/D0, not sampled
   double duration = 10.0;          // a^2/D0, sampled
   std::int64_t sample_every = 10;  // steps

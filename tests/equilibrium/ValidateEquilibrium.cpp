@@ -15,6 +15,7 @@
 // pressure_fld_spheres, pressure_fld_dicolloid02, pressure_fld_dicolloid1 (FLD defaults at dt 2.5e-4, 32
 // runs: the stress observer's Z_particle against the hard-core oracle's equation of state). Keys: n, phi, dt,
 // duration, equilibrate, blocks, every, seed, hydro, hydro_params, force_params, drift (midpoint|none),
+// integrator (euler_maruyama|rk3: the paper's RK3 with frozen Brownian forces; fixed dt),
 // oracle_sweeps, oracle_blocks, stress_every, max_overlap, adaptive (0|1), tolerance, reject_at, rejected
 // (bridge|redraw), hard_core (0|1: the oracle's), contact_term (0|1: the hard core's contact term of the
 // run's own configurations against the oracle's), runs (R > 0: R independent runs of equilibrate + duration,
@@ -230,6 +231,8 @@ void apply(Case& c, const std::string& kv) {
     c.scene.shape_params = v;
   else if (k == "drift")
     c.bd.drift = v == "none" ? DriftScheme::None : DriftScheme::Midpoint;
+  else if (k == "integrator")
+    c.bd.rk3 = v == "rk3";
   else if (k == "oracle_sweeps")
     c.mc.sweeps = std::stol(v);
   else if (k == "oracle_blocks")

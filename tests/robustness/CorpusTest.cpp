@@ -303,9 +303,23 @@ TEST_F(Corpus, CoreKeys) {
   cases.push_back(check_case("forces entry not a map",
                              edited([](YAML::Node& r) { r["forces"][0] = "repulsion"; }),
                              {at_key("forces[0]") + "expected a map with a `plugin` key"}));
-  cases.push_back(check_case("rk3 with Brownian motion",
-                             edited([](YAML::Node& r) { r["run"]["integrator"] = "rk3"; }),
-                             {at_key("run.integrator") + "rk3 is deterministic"}));
+  cases.push_back(check_case("rk3 with Brownian motion at dt: auto", edited([](YAML::Node& r) {
+                               r["run"]["integrator"] = "rk3";
+                               r["run"]["dt"] = "auto";
+                               r["run"]["dt_max"] = 0.01;
+                             }),
+                             {at_key("run.integrator") + "rk3 with Brownian motion runs fixed steps"}));
+  cases.push_back(
+      check_case("rk3 with Brownian motion and drift: none", edited([](YAML::Node& r) {
+                   r["run"]["integrator"] = "rk3";
+                   r["run"]["drift"] = "none";
+                 }),
+                 {at_key("run.drift") + "rk3 with Brownian motion always has the thermal drift"}));
+  cases.push_back(check_case("rk3 with Brownian motion and the midpoint stress", edited([](YAML::Node& r) {
+                               r["run"]["integrator"] = "rk3";
+                               r["run"]["brownian_stress"] = "midpoint";
+                             }),
+                             {at_key("run.brownian_stress") + "brownian_stress: midpoint needs"}));
   cases.push_back(check_case("dt longer than duration", edited([](YAML::Node& r) { r["run"]["dt"] = 1; }),
                              {at_key("run.dt") + "expected a time step no longer than run.duration"}));
   cases.push_back(check_case("diffusive time without Brownian motion", edited([](YAML::Node& r) {

@@ -112,8 +112,15 @@ StepAttempt EulerMaruyama::attempt(System& s, VelocityEvaluator& ev, const Noise
   return a;
 }
 
-RungeKutta3::RungeKutta3(std::size_t bodies)
+RungeKutta3::RungeKutta3(std::size_t bodies) : RungeKutta3(0, bodies) {
+  brownian_ = false;
+}
+
+RungeKutta3::RungeKutta3(std::uint64_t seed, std::size_t bodies, RejectedNoise rejected)
     : TimeIntegrator(bodies),
+      seed_(seed),
+      brownian_(true),
+      bridge_(rejected),
       k1_(6 * bodies),
       k2_(6 * bodies),
       k3_(6 * bodies),
@@ -122,15 +129,23 @@ RungeKutta3::RungeKutta3(std::size_t bodies)
       r3_(6 * bodies),
       e_(6 * bodies) {}
 
+std::string RungeKutta3::describe() const {
+  return brownian_ ? "explicit third-order Runge-Kutta (Kutta) with the Brownian force frozen over its stages"
+                   : "explicit third-order Runge-Kutta (Kutta), deterministic";
+}
+
 StepAttempt RungeKutta3::attempt(System& s, VelocityEvaluator& ev, const NoiseInterval& interval,
                                  bool want_virial) {
   const double dt = interval.duration();
   const std::size_t n6 = U_.size();
   begin_attempt(s, ev, dt);
   StepAttempt a;
+  bool first = true;
   auto stage = [&](std::vector<double>& k, std::vector<double>& r) {
     ev.prepare(s, want_virial);
-    ev.solve(s, false);
+    if (brownian_ && first) ev.draw_brownian(s, seed_, bridge_, interval);  // at x, kept for all stages
+    first = false;
+    ev.solve(s, brownian_);
     std::copy_n(ev.velocity(), n6, k.begin());
     std::copy_n(ev.relative_velocity(), n6, r.begin());
     return all_finite(k.data(), n6);
@@ -150,7 +165,7 @@ StepAttempt RungeKutta3::attempt(System& s, VelocityEvaluator& ev, const NoiseIn
     e_[k] = (k1_[k] - 2.0 * k2_[k] + k3_[k]) / 6.0;  // third-order result minus the midpoint rule's
   }
   move_from(s, base_, U_.data(), dt);
-  a.error = largest_error(s, e_.data(), nullptr, dt);
+  if (!brownian_) a.error = largest_error(s, e_.data(), nullptr, dt);
   finish_attempt(s, ev, a);
   return a;
 }

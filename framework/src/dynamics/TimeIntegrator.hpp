@@ -11,12 +11,20 @@
 //    Embedded estimate: the Euler step x + dt U(x) with the same noise is the lower-order partner,
 //    so the local error is estimated by dt |U_mid - U(x)| (an embedded Heun-Euler pair in the
 //    sense of Sammueller & Schmidt, J. Chem. Phys. 155, 134107 (2021)); no extra solve.
-//  - RungeKutta3: the paper's explicit third-order scheme for deterministic (kT = 0) runs;
-//    Kutta's tableau: k1 = f(x), k2 = f(x + dt/2 k1), k3 = f(x - dt k1 + 2 dt k2),
-//    x += dt/6 (k1 + 4 k2 + k3). Orientations take the same tableau on the rotation vector
-//    (Runge-Kutta-Munthe-Kaas: stage angular velocities corrected by -1/2 Theta x omega), so they
-//    are third-order too. Embedded estimate: the second-order midpoint rule x + dt k2 shares k1
-//    and k2, so the error of the lower-order result is dt/6 |k1 - 2 k2 + k3| (local O(dt^3)).
+//  - RungeKutta3: the paper's explicit third-order scheme (Kumar & Higdon integrate every run,
+//    Brownian ones too, with it). Kutta's tableau: k1 = f(x), k2 = f(x + dt/2 k1),
+//    k3 = f(x - dt k1 + 2 dt k2), x += dt/6 (k1 + 4 k2 + k3). Orientations take the same tableau
+//    on the rotation vector (Runge-Kutta-Munthe-Kaas: stage angular velocities corrected by
+//    -1/2 Theta x omega), so they are third-order too. Embedded estimate (kT = 0): the
+//    second-order midpoint rule x + dt k2 shares k1 and k2, so the error of the lower-order
+//    result is dt/6 |k1 - 2 k2 + k3| (local O(dt^3)).
+//    With Brownian motion F_B is drawn once at x and frozen over the three stages, as the paper
+//    does. Stage i sits at x + c_i dt M F_B + O(dt), so E[M(x_i) F_B] = M F + 2 c_i kT div M
+//    + O(dt^1/2) (<F_B F_B^T> = 2kT R/dt), and the weights give the drift sum_i b_i 2 c_i kT div M
+//    = kT div M since sum_i b_i c_i = 1/2 for any second-order tableau (4/6 * 1/2 + 1/6 * 1):
+//    the thermal drift is exact to leading order, as in the midpoint scheme, and the scheme is
+//    weakly first order. It has no error estimate for the noise, so it runs fixed steps
+//    (the guard still halves a step it rejects, on the bridge).
 // An estimate is per body, the local displacement error of its farthest surface point
 // (translation plus bounding radius times rotation), and the attempt reports the largest.
 #pragma once
@@ -113,13 +121,19 @@ class EulerMaruyama : public TimeIntegrator {
 
 class RungeKutta3 : public TimeIntegrator {
  public:
+  // Deterministic (kT = 0).
   explicit RungeKutta3(std::size_t bodies);
+  // With Brownian forces of `seed`, frozen over the stages (the paper's scheme).
+  RungeKutta3(std::uint64_t seed, std::size_t bodies, RejectedNoise rejected = RejectedNoise::Bridge);
   StepAttempt attempt(System& s, VelocityEvaluator& ev, const NoiseInterval& interval,
                       bool want_virial) override;
-  std::string describe() const override { return "explicit third-order Runge-Kutta (Kutta), deterministic"; }
-  double error_order() const override { return 3.0; }
+  std::string describe() const override;
+  double error_order() const override { return brownian_ ? 0.0 : 3.0; }
 
  private:
+  std::uint64_t seed_ = 0;
+  bool brownian_ = false;
+  BrownianBridge bridge_;
   std::vector<double> k1_, k2_, k3_, r1_, r2_, r3_, e_;
 };
 

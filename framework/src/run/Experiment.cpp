@@ -103,7 +103,9 @@ ParamSchema run_schema() {
            "1/gammadot, paper = diffusive for Pe < 1 and strain for Pe >= 1 (Kumar & Higdon)");
   s.integer("seed", 42, "", "seed of the Brownian noise (counter-based: same seed, same run)").at_least(0);
   s.choice("integrator", "auto", {"auto", "euler_maruyama", "rk3"},
-           "auto = Euler-Maruyama for Brownian runs, third-order Runge-Kutta for kT = 0");
+           "auto = Euler-Maruyama (midpoint drift) for Brownian runs, third-order Runge-Kutta for kT = 0; "
+           "rk3 with Brownian motion = the paper's scheme (Brownian force frozen over the three stages, "
+           "which gives the thermal drift; fixed steps only)");
   s.choice(
       "drift", "midpoint", {"midpoint", "none"},
       "thermal drift kT div M: midpoint step with frozen noise, or none (wrong equilibrium; for comparison)");
@@ -490,9 +492,22 @@ Experiment parse_experiment(YAML::Node root, const std::string& file,
   if (ex.dt_auto && ex.integrator == "euler_maruyama" && !ex.brownian)
     errors.add(run["integrator"], "run.integrator",
                "dt: auto without Brownian motion needs rk3 (Euler has no embedded error estimate)");
-  if (ex.brownian && ex.integrator == "rk3")
-    errors.add(run["integrator"], "run.integrator",
-               "rk3 is deterministic; use euler_maruyama for a Brownian run");
+  if (ex.brownian && ex.integrator == "rk3") {
+    // Its stages make the thermal drift themselves; it has no error estimate for the noise and
+    // no midpoint stage for the midpoint stress estimate.
+    if (ex.dt_auto)
+      errors.add(run["integrator"], "run.integrator",
+                 "rk3 with Brownian motion runs fixed steps (no error estimate for the noise); use "
+                 "euler_maruyama for dt: auto");
+    else if (ex.drift == "none")
+      errors.add(run["drift"], "run.drift",
+                 "rk3 with Brownian motion always has the thermal drift (its stages make it); drift: none "
+                 "needs euler_maruyama");
+    else if (ex.brownian_stress == "midpoint")
+      errors.add(
+          run["brownian_stress"], "run.brownian_stress",
+          "brownian_stress: midpoint needs Euler-Maruyama's midpoint stage; use random_difference with rk3");
+  }
   if (!ex.brownian && root["flow"] && root["flow"]["peclet"] && ex.peclet == 0.0)
     errors.add(root["flow"]["peclet"], "flow.peclet",
                "a non-Brownian run (brownian: false) needs shear; remove peclet or set it > 0");

@@ -201,7 +201,9 @@ Simulation::Simulation(SimulationParts parts, SimulationSettings settings, Resul
     skipped_.push_back("no Brownian stress (it needs the midpoint stage: run.drift: midpoint)");
 
   const bool use_rk3 = settings_.integrator == "rk3" || (settings_.integrator == "auto" && !brownian_);
-  if (use_rk3)
+  if (use_rk3 && brownian_)
+    integrator_ = std::make_unique<RungeKutta3>(settings_.seed, sys.size());
+  else if (use_rk3)
     integrator_ = std::make_unique<RungeKutta3>(sys.size());
   else
     integrator_ = std::make_unique<EulerMaruyama>(
