@@ -280,8 +280,11 @@ void ratio_rows(const oracle::RadialHistogram& bd, const oracle::RadialHistogram
 bool run_case(const std::string& name, const Case& c) {
   std::cout << "\n=== " << name << ": " << c.scene.describe() << "; dt "
             << (c.bd.adaptive ? "auto (tolerance " + std::to_string(c.bd.tolerance) + " a), frame " : "")
-            << c.bd.dt << ", " << (c.bd.drift == DriftScheme::None ? "drift none" : "midpoint drift") << ", "
-            << c.bd.duration << " a^2/D0 sampled after " << c.bd.equilibrate << ", " << c.bd.blocks
+            << c.bd.dt << ", "
+            << (c.bd.rk3                          ? "rk3, Brownian force frozen over its stages"
+                : c.bd.drift == DriftScheme::None ? "drift none"
+                                                  : "midpoint drift")
+            << ", " << c.bd.duration << " a^2/D0 sampled after " << c.bd.equilibrate << ", " << c.bd.blocks
             << " blocks\n"
             << std::flush;
   const auto mc = run_scene_oracle(c.scene, c.mc);

@@ -193,6 +193,7 @@ VARIANTS["long-lammpslens-dmin1e-4-rk3"] = dict(LONG, phi=0.2531, hydro="convent
                                                 repulsion="delta_min: 0.0001")
 VARIANTS["rk3-n1000-long"] = dict(LONG, count=1000, integrator="rk3")
 VARIANTS["long"] = dict(LONG)
+VARIANTS["long-replica"] = dict(LONG, seed=(2, 43))
 for _name in ["lammps", "lens", "lammpslens", "oldforms", "notaper", "lammpslens-smoothvis",
               "lammpslens-smoothvis-replica", "nolog", "squeeze", "nopump", "dmin1e-2", "dmin1e-4", "dnum1e-3",
               "dmin1e-4-replica", "dmin3e-4", "dmin3e-5", "lammps-dmin1e-4", "lammpslens-dmin1e-4", "lammpslens-dmin1e-4-replica"]:
@@ -201,7 +202,7 @@ BROWNIAN = ["baseline", "lammps", "lens", "lammpslens", "notaper", "isobody", "r
             "smoothvis", "lammpslens-smoothvis", "nolog", "squeeze", "lammps-n1000-long", "dmin1e-4", "lammps-dmin1e-4", "lammpslens-dmin1e-4",
             "long-lammpslens-dmin1e-4", "long-lammpslens-dmin1e-4-replica", "lammpslens-dmin1e-4-n1000-long",
             "long-lammpslens-dmin1e-4-wall", "long-lammpslens-dmin1e-4-replica-wall", "long-lammpslens-dmin1e-4-rep100",
-            "long-rk3", "long-rk3-replica", "long-lammpslens-dmin1e-4-rk3", "rk3-n1000-long"] + [v for v in VARIANTS if v.startswith("pe")]
+            "long-rk3", "long-rk3-replica", "long-lammpslens-dmin1e-4-rk3", "rk3-n1000-long", "long", "long-replica"] + [v for v in VARIANTS if v.startswith("pe")]
 NOBROWN = ["baseline", "replica", "lammps", "oldforms", "lens", "isobody", "rep100", "lammpslens", "notaper", "centrearm", "lever", "pump", "twist", "khfit", "long",
            "long-lammps", "long-lens", "long-lammpslens", "long-oldforms", "long-notaper", "n1000", "fixeddt",
            "smoothvis", "lammpslens-smoothvis", "lammpslens-smoothvis-replica", "lammps-smoothvis",

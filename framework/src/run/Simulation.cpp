@@ -232,6 +232,10 @@ Simulation::Simulation(SimulationParts parts, SimulationSettings settings, Resul
        << settings_.skin << " a\n"
        << "threads: " << settings_.threads.threads << " (" << settings_.threads.reason << ")\n";
   for (const auto& w : settings_.threads.warnings) log_ << "warning: " << w << "\n";
+  if (use_rk3 && brownian_)
+    log_ << "note: rk3 with Brownian motion is the paper's scheme; near contact its third stage, at "
+            "x - dt k1 + 2 dt k2, can step back to where lubrication is weaker and overlap pairs more "
+            "than the default midpoint scheme (docs/time_steps.md, \"Integrators\")\n";
   for (const auto& s : skipped_) log_ << "skipped: " << s << "\n";
 
   info_.total_steps = settings_.total_steps;
