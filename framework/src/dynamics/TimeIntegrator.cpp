@@ -112,14 +112,15 @@ StepAttempt EulerMaruyama::attempt(System& s, VelocityEvaluator& ev, const Noise
   return a;
 }
 
-RungeKutta3::RungeKutta3(std::size_t bodies) : RungeKutta3(0, bodies) {
-  brownian_ = false;
-}
+RungeKutta3::RungeKutta3(std::size_t bodies) : RungeKutta3(bodies, false, 0, RejectedNoise::Bridge) {}
 
 RungeKutta3::RungeKutta3(std::uint64_t seed, std::size_t bodies, RejectedNoise rejected)
+    : RungeKutta3(bodies, true, seed, rejected) {}
+
+RungeKutta3::RungeKutta3(std::size_t bodies, bool brownian, std::uint64_t seed, RejectedNoise rejected)
     : TimeIntegrator(bodies),
       seed_(seed),
-      brownian_(true),
+      brownian_(brownian),
       bridge_(rejected),
       k1_(6 * bodies),
       k2_(6 * bodies),

@@ -131,6 +131,7 @@ class RungeKutta3 : public TimeIntegrator {
   double error_order() const override { return brownian_ ? 0.0 : 3.0; }
 
  private:
+  RungeKutta3(std::size_t bodies, bool brownian, std::uint64_t seed, RejectedNoise rejected);
   std::uint64_t seed_ = 0;
   bool brownian_ = false;
   BrownianBridge bridge_;

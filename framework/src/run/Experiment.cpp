@@ -499,11 +499,11 @@ Experiment parse_experiment(YAML::Node root, const std::string& file,
       errors.add(run["integrator"], "run.integrator",
                  "rk3 with Brownian motion runs fixed steps (no error estimate for the noise); use "
                  "euler_maruyama for dt: auto");
-    else if (ex.drift == "none")
+    if (ex.drift == "none")
       errors.add(run["drift"], "run.drift",
                  "rk3 with Brownian motion always has the thermal drift (its stages make it); drift: none "
                  "needs euler_maruyama");
-    else if (ex.brownian_stress == "midpoint")
+    if (ex.brownian_stress == "midpoint")
       errors.add(
           run["brownian_stress"], "run.brownian_stress",
           "brownian_stress: midpoint needs Euler-Maruyama's midpoint stage; use random_difference with rk3");
