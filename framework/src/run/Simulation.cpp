@@ -235,7 +235,8 @@ Simulation::Simulation(SimulationParts parts, SimulationSettings settings, Resul
   if (use_rk3 && brownian_)
     log_ << "note: rk3 with Brownian motion is the paper's scheme; near contact its third stage, at "
             "x - dt k1 + 2 dt k2, can step back to where lubrication is weaker and overlap pairs more "
-            "than the default midpoint scheme (docs/time_steps.md, \"Integrators\")\n";
+            "than the default midpoint scheme; with FLD at Pe <= 1 and dt 1e-3 it fails within a strain "
+            "(docs/time_steps.md, \"Integrators\")\n";
   for (const auto& s : skipped_) log_ << "skipped: " << s << "\n";
 
   info_.total_steps = settings_.total_steps;
