@@ -231,9 +231,11 @@ void apply(Case& c, const std::string& kv) {
     c.scene.shape_params = v;
   else if (k == "drift")
     c.bd.drift = v == "none" ? DriftScheme::None : DriftScheme::Midpoint;
-  else if (k == "integrator")
+  else if (k == "integrator") {
+    if (v != "rk3" && v != "euler_maruyama")
+      throw std::runtime_error("integrator: expected euler_maruyama or rk3");
     c.bd.rk3 = v == "rk3";
-  else if (k == "oracle_sweeps")
+  } else if (k == "oracle_sweeps")
     c.mc.sweeps = std::stol(v);
   else if (k == "oracle_blocks")
     c.mc.blocks = std::stoi(v);
