@@ -301,8 +301,8 @@ TEST(AdaptiveSteps, MultiplicativeNoiseIsExactWithRareRejectionsOnly) {
 // with the position-dependent mobility it keeps the exact <x^2> k/kT = 1 within 3 SE. Its own
 // bias at dt = 0.01 is O(dt) (below 1e-4 for constant mobility: the OU recursion gives
 // 1 - O(dt^3)). The same comparison fails without the drift: Euler-Maruyama with drift: none
-// samples exp(-U/kT)/m, <x^2> far below 1. 20 blocks of 300 a^2/D0 (30 relaxation times
-// 1/(2 k m) at the trap centre's m = 0.1). About 10 s.
+// samples exp(-U/kT)/m, <x^2> far below 1. 20 blocks of 300 a^2/D0 (60 relaxation times
+// 1/(2 k m) at the trap centre's m = 0.1). About 1 s.
 TEST(BrownianRungeKutta3, FrozenNoiseMakesTheThermalDrift) {
   RungeKutta3 rk(2024, 1);
   const TrapResult good = trapped_body_fixed(rk, Mobility::PositionDependent, 0.01, 30000);

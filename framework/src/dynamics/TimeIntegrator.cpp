@@ -141,24 +141,22 @@ StepAttempt RungeKutta3::attempt(System& s, VelocityEvaluator& ev, const NoiseIn
   const std::size_t n6 = U_.size();
   begin_attempt(s, ev, dt);
   StepAttempt a;
-  bool first = true;
-  auto stage = [&](std::vector<double>& k, std::vector<double>& r) {
+  auto stage = [&](std::vector<double>& k, std::vector<double>& r, bool at_start) {
     ev.prepare(s, want_virial);
-    if (brownian_ && first) ev.draw_brownian(s, seed_, bridge_, interval);  // at x, kept for all stages
-    first = false;
+    if (brownian_ && at_start) ev.draw_brownian(s, seed_, bridge_, interval);  // at x, kept for all stages
     ev.solve(s, brownian_);
     std::copy_n(ev.velocity(), n6, k.begin());
     std::copy_n(ev.relative_velocity(), n6, r.begin());
     return all_finite(k.data(), n6);
   };
-  if (!stage(k1_, r1_)) return StepAttempt{0.0, a.min_gap, false};
+  if (!stage(k1_, r1_, true)) return StepAttempt{0.0, a.min_gap, false};
   at_stress_stage(StressStage::Start, s, ev, want_virial);
   move_from(s, base_, k1_.data(), 0.5 * dt);
-  if (!stage(k2_, r2_)) return StepAttempt{0.0, a.min_gap, false};
+  if (!stage(k2_, r2_, false)) return StepAttempt{0.0, a.min_gap, false};
   correct_for_rotation(k2_, k1_, 0.5 * dt);
   for (std::size_t k = 0; k < n6; ++k) U_[k] = 2.0 * k2_[k] - k1_[k];
   move_from(s, base_, U_.data(), dt);
-  if (!stage(k3_, r3_)) return StepAttempt{0.0, a.min_gap, false};
+  if (!stage(k3_, r3_, false)) return StepAttempt{0.0, a.min_gap, false};
   correct_for_rotation(k3_, U_, dt);
   for (std::size_t k = 0; k < n6; ++k) {
     U_[k] = (k1_[k] + 4.0 * k2_[k] + k3_[k]) / 6.0;
