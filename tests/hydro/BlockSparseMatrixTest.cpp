@@ -533,6 +533,58 @@ TEST(BlockIncompleteCholesky, IsExactWithoutFillWhateverTheNumbering) {
   EXPECT_FALSE(other.restore_preconditioner_state(short_state, n));
 }
 
+// IC(0)'s rows graded by stiffness (StiffnessGradedOrder.hpp). A 4-cycle of bodies, R_0 = 1 each,
+// joined by pair terms k P (P = [[I, -I], [-I, I]], 6 x 6 blocks): three links of k = 0.9 (below
+// the cluster fill's stiff ratio, so no fill) and the two links of one soft body of k = 1e-9.
+// Exact Cholesky of a chordless cycle creates one fill block; IC(0) drops it, so IC(0) is exact
+// (to the dropped fill, 1e-18 of R here) only if the soft body goes first (its fill is k_soft^2)
+// and then the stiff path from an end. The grades put it so whatever the numbering: soft body
+// (trace 6 (1 + 2e-9)) first, the path's ends (6 x 1.9) next, its middle (6 x 2.8) last. The
+// structural order alone (cuthill_mckee) misses it for some numberings: the test fails without the
+// grades (checked below on every numbering).
+TEST(BlockIncompleteCholesky, StiffnessGradedRowsAreExactOnASoftCornerOfACycle) {
+  const double k_soft = 1e-9, k = 0.9;
+  int structural_exact = 0, numberings = 0;
+  std::array<std::uint32_t, 4> label = {0, 1, 2, 3};
+  do {
+    // Cycle 0-1-2-3-0 in the body's own index c, numbered label[c]; body 0 is the soft one.
+    const std::array<double, 4> link = {k_soft, k, k, k_soft};  // link c joins c and c + 1
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> upper;
+    for (std::uint32_t c = 0; c < 4; ++c) {
+      const std::uint32_t i = label[c], j = label[(c + 1) % 4];
+      upper.emplace_back(std::min(i, j), std::max(i, j));
+    }
+    BlockSparseMatrix A;
+    A.set_pattern(4, upper);
+    for (std::uint32_t c = 0; c < 4; ++c) A.diagonal(label[c]) = Mat6::Identity();
+    for (std::uint32_t c = 0; c < 4; ++c) {
+      const std::uint32_t i = label[c], j = label[(c + 1) % 4];
+      A.diagonal(i) += link[c] * Mat6::Identity();
+      A.diagonal(j) += link[c] * Mat6::Identity();
+      A.upper(A.find(std::min(i, j), std::max(i, j))) = -link[c] * Mat6::Identity();
+    }
+    const Eigen::VectorXd b = random_vector(A.size(), 91);
+    for (const auto order : {fldsim::RowOrder::StiffnessGraded, fldsim::RowOrder::CuthillMcKee}) {
+      BlockPCG pcg(fldsim::Preconditioner::IncompleteCholesky);
+      pcg.set_row_order(order);
+      pcg.prepare(A);
+      ASSERT_EQ(pcg.active(), fldsim::Preconditioner::IncompleteCholesky);
+      Eigen::VectorXd x = Eigen::VectorXd::Zero(A.size());
+      // One iteration from zero is the preconditioner's own solve, x = (U^T U)^-1 b; its residual is
+      // the dropped fill's (1e-18, below the sweeps' single-precision rounding, 1e-7, of b).
+      const auto one = pcg.solve(A, b.data(), x.data(), 1e-6, 1);
+      if (order == fldsim::RowOrder::StiffnessGraded)
+        EXPECT_TRUE(one.converged) << "numbering " << label[0] << label[1] << label[2] << label[3]
+                                   << ": residual " << one.relative_residual;
+      else
+        structural_exact += one.converged;
+    }
+    ++numberings;
+  } while (std::next_permutation(label.begin(), label.end()));
+  EXPECT_EQ(numberings, 24);
+  EXPECT_LT(structural_exact, numberings);  // the reverse Cuthill-McKee order alone fails some
+}
+
 namespace {
 
 // The 4-cycle kKershawCycle with body i numbered label[i], in the rotational rows only: the

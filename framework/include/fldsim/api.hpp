@@ -17,9 +17,10 @@
 // optional pair energy of a force law, came in 2.1 as a class of its own; fldsim::RunNotes, lines
 // a component puts in the run log, in 5.3; BlockSparseMatrix::copy_from in 5.4; BlockPCG::bind in
 // 5.5; parallel_loop.hpp in 5.6; BlockSparseMatrix::copy_pattern_from and set_pattern_for_overwrite in 5.7;
-// BlockPCG::set_shifts and shift, IC(0) retried with a diagonal shift before falling back, in 5.8).
+// BlockPCG::set_shifts and shift, IC(0) retried with a diagonal shift before falling back, in 5.8;
+// RowOrder and BlockPCG::set_row_order, IC(0)'s rows graded by stiffness, in 5.9).
 #define FLDSIM_API_MAJOR 5
-#define FLDSIM_API_MINOR 8
+#define FLDSIM_API_MINOR 9
 
 #define FLDSIM_STR2(x) #x
 #define FLDSIM_STR(x) FLDSIM_STR2(x)

@@ -12,6 +12,7 @@
 #include "linalg/CuthillMcKee.hpp"
 #include "linalg/LevelSchedule.hpp"
 #include "linalg/StiffClusterFill.hpp"
+#include "linalg/StiffnessGradedOrder.hpp"
 
 namespace fldsim {
 
@@ -36,6 +37,8 @@ class FLDSIM_VISIBLE BlockIncompleteCholesky {
   // shifted incomplete Cholesky, Math. Comp. 34, 473 (1980); 0: IC(0) of A itself). False if a
   // pivot block is not positive definite.
   bool factorize(const BlockSparseMatrix& A, double shift = 0.0);
+  // The row order of the next factorisations (a change takes effect at the next factorize()).
+  void set_row_order(RowOrder order);
   // After factorize(A) failed: the same rows (order, pattern, fill) again with another shift.
   bool refactorize(const BlockSparseMatrix& A, double shift);
   // z = (U^T U)^-1 r.
@@ -86,7 +89,9 @@ class FLDSIM_VISIBLE BlockIncompleteCholesky {
   std::vector<std::uint32_t> new_of_, old_of_;
   static constexpr int kReorderEvery = 100;
   int order_age_ = 0;  // factorisations with the current order, the last one included
+  RowOrder row_order_ = RowOrder::Automatic;
   linalg::CuthillMcKeeScratch order_scratch_;
+  linalg::StiffnessGradeScratch grade_scratch_;
   // A's upper pattern in that order, by rows and its transposed index (as in BlockSparseMatrix);
   // source_[a] = 2 b + t: the factor's block a is A's upper block b, transposed if t = 1.
   std::vector<std::int64_t> row_start_, col_start_, by_col_, source_;

@@ -45,6 +45,9 @@ Preconditioner BlockPCG::active() const {
 void BlockPCG::set_shifts(const std::vector<double>& shifts) {
   w_->shifts = shifts;
 }
+void BlockPCG::set_row_order(RowOrder order) {
+  w_->ic.set_row_order(order);
+}
 double BlockPCG::shift() const {
   return w_->shift;
 }

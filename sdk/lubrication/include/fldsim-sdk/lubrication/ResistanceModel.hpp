@@ -42,6 +42,8 @@ struct ModelSettings {
   double refactor_threshold = 0.15;
   // Where IC(0) breaks down: the diagonal shifts tried before D-ILU takes over (BlockPCG::set_shifts).
   std::vector<double> ic_shifts{BlockPCG::kDefaultShifts.begin(), BlockPCG::kDefaultShifts.end()};
+  // IC(0)'s row order (BlockPCG::set_row_order).
+  RowOrder ic_order = RowOrder::Automatic;
 };
 
 // Declare and read the parameters common to lubrication and fld. `conventions: lammps` presets
@@ -59,6 +61,7 @@ class ResistanceModel : public HydroModel, public RunNotes {
  public:
   explicit ResistanceModel(ModelSettings settings) : settings_(settings), pcg_(settings.preconditioner) {
     pcg_.set_shifts(settings_.ic_shifts);
+    pcg_.set_row_order(settings_.ic_order);
   }
 
   double pair_range(const System& system) const override;
