@@ -585,6 +585,49 @@ TEST(BlockIncompleteCholesky, StiffnessGradedRowsAreExactOnASoftCornerOfACycle) 
   EXPECT_LT(structural_exact, numberings);  // the reverse Cuthill-McKee order alone fails some
 }
 
+// RowOrder::Automatic (the default) grades only a broad stiffness, median diagonal trace >= 10 x the
+// smallest (StiffnessGradedOrder.hpp): on the soft-corner cycle above (traces 6 x {1, 1.9, 1.9, 2.8})
+// it solves bit for bit as CuthillMcKee, and with five uncoupled bodies of R_0 = 100 added (median
+// 600 against 6) bit for bit as StiffnessGraded, which differs from CuthillMcKee there (the test fails
+// if Automatic always or never grades).
+TEST(BlockIncompleteCholesky, AutomaticRowOrderGradesOnlyABroadStiffness) {
+  auto cycle = [](std::size_t extra) {
+    const std::array<double, 4> link = {1e-9, 0.9, 0.9, 1e-9};
+    const std::array<std::uint32_t, 4> label = {2, 0, 3, 1};  // a numbering RCM alone gets wrong
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> upper;
+    for (std::uint32_t c = 0; c < 4; ++c)
+      upper.emplace_back(std::min(label[c], label[(c + 1) % 4]), std::max(label[c], label[(c + 1) % 4]));
+    BlockSparseMatrix A;
+    A.set_pattern(4 + extra, upper);
+    for (std::size_t i = 0; i < 4 + extra; ++i) A.diagonal(i) = (i < 4 ? 1.0 : 100.0) * Mat6::Identity();
+    for (std::uint32_t c = 0; c < 4; ++c) {
+      const std::uint32_t i = label[c], j = label[(c + 1) % 4];
+      A.diagonal(i) += link[c] * Mat6::Identity();
+      A.diagonal(j) += link[c] * Mat6::Identity();
+      A.upper(A.find(std::min(i, j), std::max(i, j))) = -link[c] * Mat6::Identity();
+    }
+    return A;
+  };
+  auto preconditioned = [](const BlockSparseMatrix& A, fldsim::RowOrder order) {
+    BlockPCG pcg(fldsim::Preconditioner::IncompleteCholesky);
+    pcg.set_row_order(order);
+    pcg.prepare(A);
+    const Eigen::VectorXd b = random_vector(A.size(), 92);
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(A.size());
+    pcg.solve(A, b.data(), x.data(), 1e-6, 1);  // one iteration: the preconditioner's own solve
+    return x;
+  };
+  using fldsim::RowOrder;
+  for (const std::size_t extra : {std::size_t(0), std::size_t(5)}) {
+    const BlockSparseMatrix A = cycle(extra);
+    const Eigen::VectorXd automatic = preconditioned(A, RowOrder::Automatic);
+    const Eigen::VectorXd graded = preconditioned(A, RowOrder::StiffnessGraded);
+    const Eigen::VectorXd structural = preconditioned(A, RowOrder::CuthillMcKee);
+    ASSERT_NE(graded, structural) << "extra " << extra << ": the two orders must differ here";
+    EXPECT_EQ(automatic, extra == 0 ? structural : graded) << "extra " << extra;
+  }
+}
+
 namespace {
 
 // The 4-cycle kKershawCycle with body i numbered label[i], in the rotational rows only: the

@@ -27,11 +27,14 @@ void BlockIncompleteCholesky::analyse(const BlockSparseMatrix& A, bool reorder) 
   if (reorder) {
     linalg::reverse_cuthill_mckee(n, A.row_start(), A.col(), A.col_start(), A.by_col_row(), new_of_, old_of_,
                                   order_scratch_);
-    // Graded where A sits in the caches (the threshold of the single-precision products: A's
-    // blocks under 8 MB); beyond, the graded rows' scattered reads cost the factorisation 20-25 %
-    // more than its 16-20 % fewer iterations save (bench/README.md, "IC(0) rows graded by stiffness").
+    // Automatic: graded where A sits in the caches (the threshold of the single-precision
+    // products: A's blocks under 8 MB; beyond, the graded rows' scattered reads cost the
+    // factorisation 20-25 % more than its 16-20 % fewer iterations save) and its traces are broad
+    // (a contact network; near equilibrium grading costs iterations). bench/README.md, "IC(0) rows
+    // graded by stiffness".
     const bool graded = row_order_ == RowOrder::StiffnessGraded ||
-                        (row_order_ == RowOrder::Automatic && !linalg::SinglePrecisionProduct::pays(A));
+                        (row_order_ == RowOrder::Automatic && !linalg::SinglePrecisionProduct::pays(A) &&
+                         linalg::stiffness_is_broad(A, grade_scratch_));
     if (graded) linalg::grade_by_stiffness(A, new_of_, old_of_, grade_scratch_);
     order_age_ = 0;
   }

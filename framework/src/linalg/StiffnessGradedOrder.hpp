@@ -9,7 +9,8 @@
 // least). Measured (bench/README.md, "IC(0) rows graded by stiffness"): 1000 fused dumbbells sheared
 // 40 strains at kT = 0, 55.5 -> 39.3 CG iterations a step (at Pe 1000, 45.9 -> 33.3), IC(0)'s
 // breakdowns 233 -> fewer than 16 in 500 factorisations. Beyond the caches the scattered rows cost
-// more than that saves: BlockIncompleteCholesky grades only small matrices unless told to.
+// more than that saves, and near equilibrium (narrow traces) grading costs iterations:
+// BlockIncompleteCholesky grades only small matrices with broad traces unless told to.
 //
 // The grade of row i is the bucket of its diagonal block's trace t_i against the smallest one,
 // floor(4 log2(t_i / t_min)) (buckets 2^(1/4) = 1.19 wide), and the rows are sorted by grade
@@ -27,10 +28,31 @@
 
 namespace fldsim::linalg {
 
-// Scratch of grade_by_stiffness, kept between calls so that a reorder does not allocate.
+// Scratch of grade_by_stiffness and stiffness_is_broad, kept between calls so that a reorder does
+// not allocate.
 struct StiffnessGradeScratch {
   std::vector<std::uint32_t> grade, count, sorted;
+  std::vector<double> trace;
 };
+
+// True when the median body's diagonal trace is at least kBroad times the smallest: most bodies
+// are held by lubrication much stiffer than their own drag, as in a sheared contact network
+// (median 39-65 x the smallest in 1000 fused dumbbells sheared at kT = 0 and Pe 1000), not as in a
+// suspension near equilibrium (3-5 x: Monte Carlo starts of spheres and dicolloids at phi 0.3-0.5,
+// lattices). Where the traces are that narrow the grades only split near-equal rows into classes,
+// a multicolour-like order that IC(0) does worse with (spheres phi 0.5, N 1000, lattice start: 47.1
+// -> 58.8 CG it/step graded; bench/README.md, "IC(0) rows graded by stiffness").
+inline constexpr double kBroad = 10.0;
+inline bool stiffness_is_broad(const BlockSparseMatrix& A, StiffnessGradeScratch& s) {
+  const std::size_t n = A.blocks();
+  if (n == 0) return false;
+  resize_grow_only(s.trace, n);
+  for (std::size_t i = 0; i < n; ++i) s.trace[i] = A.diagonal(i).trace();
+  const double t_min = *std::min_element(s.trace.begin(), s.trace.begin() + std::ptrdiff_t(n));
+  auto median = s.trace.begin() + std::ptrdiff_t(n / 2);
+  std::nth_element(s.trace.begin(), median, s.trace.begin() + std::ptrdiff_t(n));
+  return t_min > 0.0 && *median >= kBroad * t_min;
+}
 
 // Reorders old_of (a permutation of A's rows, e.g. reverse Cuthill-McKee) stably by grade and
 // writes new_of as its inverse. Deterministic: the grade comes from the exponent of a double
@@ -45,8 +67,8 @@ inline void grade_by_stiffness(const BlockSparseMatrix& A, std::vector<std::uint
   if (!(t_min > 0.0)) return;  // not an SPD matrix's diagonal: keep the order as it is
   resize_grow_only(s.grade, n);
   for (std::size_t i = 0; i < n; ++i) {
-    // (t / t_min)^4 has exponent floor(4 log2(t / t_min)), up to its rounding; capped where a
-    // ratio of 2^63 would overflow the fourth power (no lubrication block comes near it).
+    // (t / t_min)^4 has exponent floor(4 log2(t / t_min)), up to its rounding. The ratio is capped
+    // at 1e15 (grade 199; no lubrication block comes near it) so that the power stays finite.
     const double r = std::min(A.diagonal(i).trace() / t_min, 1e15);
     const double r4 = (r * r) * (r * r);
     const int g = r4 >= 1.0 ? std::ilogb(r4) : 0;  // also for a NaN trace: grade 0

@@ -130,12 +130,12 @@ void describe_lubrication_params(ParamSchema& s) {
            "row order of the IC(0) factor: cuthill_mckee (reverse Cuthill-McKee of the pair graph, "
            "whatever the bodies' numbering), stiffness (that order graded by each body's total "
            "resistance, the softest bodies first and those in stiff near contact last, so that the fill "
-           "IC(0) drops is that of soft rows: 1000 fused dumbbells sheared at Pe 1000 or kT = 0 need "
-           "27-29 % fewer CG iterations and IC(0) nearly stops breaking down; fresh starts -4 to -9 %, "
-           "homonuclear c/a 0.2 at phi 0.5 +4 %) or auto: stiffness while R takes less than 8 MB (N up to "
-           "about 8000), cuthill_mckee beyond, where the graded rows' scattered memory makes the "
-           "factorisation 20-25 % dearer than the fewer iterations save; bench/README.md \"IC(0) rows "
-           "graded by stiffness\"");
+           "IC(0) drops is that of soft rows: 1000 fused dumbbells sheared at kT = 0 or Pe 1000 need "
+           "27-29 % fewer CG iterations and IC(0) nearly stops breaking down; near equilibrium -9 to +5 "
+           "%) or auto: stiffness where R takes less than 8 MB (N up to about 8000) and the median "
+           "body's resistance is at least 10 times the smallest (a sheared contact network), else "
+           "cuthill_mckee (beyond the caches the graded rows' scattered memory costs more than the "
+           "iterations save); bench/README.md \"IC(0) rows graded by stiffness\"");
 }
 
 bool lammps_conventions(const Params& p) {
