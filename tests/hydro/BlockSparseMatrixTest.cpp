@@ -585,7 +585,7 @@ TEST(BlockIncompleteCholesky, StiffnessGradedRowsAreExactOnASoftCornerOfACycle) 
   EXPECT_LT(structural_exact, numberings);  // the reverse Cuthill-McKee order alone fails some
 }
 
-// RowOrder::Automatic (the default) grades only a broad stiffness, median diagonal trace >= 10 x the
+// RowOrder::Automatic (the default) grades only a broad stiffness, median diagonal trace >= 5 x the
 // smallest (StiffnessGradedOrder.hpp): on the soft-corner cycle above (traces 6 x {1, 1.9, 1.9, 2.8})
 // it solves bit for bit as CuthillMcKee, and with five uncoupled bodies of R_0 = 100 added (median
 // 600 against 6) bit for bit as StiffnessGraded, which differs from CuthillMcKee there (the test fails

@@ -81,7 +81,7 @@ enum class Preconditioner { BlockJacobi, IncompleteCholesky, EisenstatDilu };
 // The row order of the IC(0) factor (API 5.9): reverse Cuthill-McKee of A's block graph alone, or
 // that order graded by stiffness, the rows with the smallest diagonal trace first (what IC(0) drops
 // is then the fill of soft rows; framework/src/linalg/StiffnessGradedOrder.hpp), or (Automatic, the
-// default) graded where A's blocks take less than 8 MB and the median diagonal trace is at least 10
+// default) graded where A's blocks take less than 8 MB and the median diagonal trace is at least 5
 // times the smallest (a sheared contact network), Cuthill-McKee otherwise: beyond the caches the
 // graded rows' scattered memory costs more than their fewer iterations save, and near equilibrium
 // grading costs iterations.

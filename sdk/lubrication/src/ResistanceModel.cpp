@@ -133,7 +133,7 @@ void describe_lubrication_params(ParamSchema& s) {
            "IC(0) drops is that of soft rows: 1000 fused dumbbells sheared at kT = 0 or Pe 1000 need "
            "27-29 % fewer CG iterations and IC(0) nearly stops breaking down; near equilibrium -9 to +5 "
            "%) or auto: stiffness where R takes less than 8 MB (N up to about 8000) and the median "
-           "body's resistance is at least 10 times the smallest (a sheared contact network), else "
+           "body's resistance is at least 5 times the smallest (a contact network), else "
            "cuthill_mckee (beyond the caches the graded rows' scattered memory costs more than the "
            "iterations save); bench/README.md \"IC(0) rows graded by stiffness\"");
 }
