@@ -28,6 +28,9 @@
 
 namespace fldsim::linalg {
 
+// Grades of grade_by_stiffness (the ratio's cap, 1e15, is grade 199).
+inline constexpr std::uint32_t kGrades = 256;
+
 // Scratch of grade_by_stiffness and stiffness_is_broad, kept between calls so that a reorder does
 // not allocate.
 struct StiffnessGradeScratch {
@@ -47,7 +50,12 @@ inline constexpr double kBroad = 5.0;
 inline bool stiffness_is_broad(const BlockSparseMatrix& A, StiffnessGradeScratch& s) {
   const std::size_t n = A.blocks();
   if (n == 0) return false;
+  // All of the scratch is sized here, so that a state that turns broad later in a run is graded
+  // without allocating inside the time step (tests/dynamics/StepAllocationTest.cpp).
   resize_grow_only(s.trace, n);
+  resize_grow_only(s.grade, n);
+  resize_grow_only(s.sorted, n);
+  fill_grow_only(s.count, std::size_t(kGrades) + 1, std::uint32_t(0));
   for (std::size_t i = 0; i < n; ++i) s.trace[i] = A.diagonal(i).trace();
   const double t_min = *std::min_element(s.trace.begin(), s.trace.begin() + std::ptrdiff_t(n));
   auto median = s.trace.begin() + std::ptrdiff_t(n / 2);
@@ -60,7 +68,6 @@ inline bool stiffness_is_broad(const BlockSparseMatrix& A, StiffnessGradeScratch
 // (std::ilogb), not from a library logarithm.
 inline void grade_by_stiffness(const BlockSparseMatrix& A, std::vector<std::uint32_t>& new_of,
                                std::vector<std::uint32_t>& old_of, StiffnessGradeScratch& s) {
-  constexpr std::uint32_t kGrades = 256;
   const std::size_t n = A.blocks();
   if (n == 0) return;
   double t_min = A.diagonal(0).trace();
