@@ -63,9 +63,11 @@ def step_tables(rows):
     scaling = [r for r in rows if r["label"] == "scaling"]
     if scaling:
         out += ["## Scaling with N (spheres, Pe = 10, no observers)", "",
-                "Lattice start + 50 MC sweeps for every N (see README); no observers and one warm-up step at every N, "
-                "so that every N times the same work. CPU time on one thread, fastest of 3 blocks of "
-                "the steps timed (1 block in the quick plan); the 2-thread "
+                "Lattice start + 50 MC sweeps for every N (see README); no observers, three warm-up steps and "
+                "the same timed steps (4-33; 4-13 in the quick plan) at every N, so that every N times the same "
+                "work. CPU time on one thread, the mean over those steps (not the fastest of several blocks: "
+                "that picked the block with the fewest CG iterations, which at N = 1000 fluctuate most; "
+                "bench/README.md, \"The scaling table's protocol\"); the 2-thread "
                 "speed-up is wall ms/step on 1 thread / wall ms/step on 2 threads, measured back to back. "
                 "PCG per iteration = time in the PCG solves / CG iterations, per 1000 bodies: the cost of one "
                 "iteration, apart from how many a step needs.", "",
