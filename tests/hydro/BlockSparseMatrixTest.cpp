@@ -533,6 +533,26 @@ TEST(BlockIncompleteCholesky, IsExactWithoutFillWhateverTheNumbering) {
   EXPECT_FALSE(other.restore_preconditioner_state(short_state, n));
 }
 
+// The 4-cycle of the two tests below: body c (numbered label[c]) joined to c + 1 by k_c P (P = [[I, -I],
+// [-I, I]]), links {k_soft, k, k, k_soft} (body 0 the soft corner), R_0 = 1 each, and `extra`
+// uncoupled bodies of R_0 = 100 numbered after them.
+static BlockSparseMatrix soft_corner_cycle(const std::array<std::uint32_t, 4>& label, std::size_t extra = 0) {
+  const std::array<double, 4> link = {1e-9, 0.9, 0.9, 1e-9};  // link c joins c and c + 1
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> upper;
+  for (std::uint32_t c = 0; c < 4; ++c)
+    upper.emplace_back(std::min(label[c], label[(c + 1) % 4]), std::max(label[c], label[(c + 1) % 4]));
+  BlockSparseMatrix A;
+  A.set_pattern(4 + extra, upper);
+  for (std::size_t i = 0; i < 4 + extra; ++i) A.diagonal(i) = (i < 4 ? 1.0 : 100.0) * Mat6::Identity();
+  for (std::uint32_t c = 0; c < 4; ++c) {
+    const std::uint32_t i = label[c], j = label[(c + 1) % 4];
+    A.diagonal(i) += link[c] * Mat6::Identity();
+    A.diagonal(j) += link[c] * Mat6::Identity();
+    A.upper(A.find(std::min(i, j), std::max(i, j))) = -link[c] * Mat6::Identity();
+  }
+  return A;
+}
+
 // IC(0)'s rows graded by stiffness (StiffnessGradedOrder.hpp). A 4-cycle of bodies, R_0 = 1 each,
 // joined by pair terms k P (P = [[I, -I], [-I, I]], 6 x 6 blocks): three links of k = 0.9 (below
 // the cluster fill's stiff ratio, so no fill) and the two links of one soft body of k = 1e-9.
@@ -543,26 +563,10 @@ TEST(BlockIncompleteCholesky, IsExactWithoutFillWhateverTheNumbering) {
 // structural order alone (cuthill_mckee) misses it for some numberings: the test fails without the
 // grades (checked below on every numbering).
 TEST(BlockIncompleteCholesky, StiffnessGradedRowsAreExactOnASoftCornerOfACycle) {
-  const double k_soft = 1e-9, k = 0.9;
   int structural_exact = 0, numberings = 0;
   std::array<std::uint32_t, 4> label = {0, 1, 2, 3};
   do {
-    // Cycle 0-1-2-3-0 in the body's own index c, numbered label[c]; body 0 is the soft one.
-    const std::array<double, 4> link = {k_soft, k, k, k_soft};  // link c joins c and c + 1
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> upper;
-    for (std::uint32_t c = 0; c < 4; ++c) {
-      const std::uint32_t i = label[c], j = label[(c + 1) % 4];
-      upper.emplace_back(std::min(i, j), std::max(i, j));
-    }
-    BlockSparseMatrix A;
-    A.set_pattern(4, upper);
-    for (std::uint32_t c = 0; c < 4; ++c) A.diagonal(label[c]) = Mat6::Identity();
-    for (std::uint32_t c = 0; c < 4; ++c) {
-      const std::uint32_t i = label[c], j = label[(c + 1) % 4];
-      A.diagonal(i) += link[c] * Mat6::Identity();
-      A.diagonal(j) += link[c] * Mat6::Identity();
-      A.upper(A.find(std::min(i, j), std::max(i, j))) = -link[c] * Mat6::Identity();
-    }
+    const BlockSparseMatrix A = soft_corner_cycle(label);
     const Eigen::VectorXd b = random_vector(A.size(), 91);
     for (const auto order : {fldsim::RowOrder::StiffnessGraded, fldsim::RowOrder::CuthillMcKee}) {
       BlockPCG pcg(fldsim::Preconditioner::IncompleteCholesky);
@@ -591,23 +595,6 @@ TEST(BlockIncompleteCholesky, StiffnessGradedRowsAreExactOnASoftCornerOfACycle) 
 // 600 against 6) bit for bit as StiffnessGraded, which differs from CuthillMcKee there (the test fails
 // if Automatic always or never grades).
 TEST(BlockIncompleteCholesky, AutomaticRowOrderGradesOnlyABroadStiffness) {
-  auto cycle = [](std::size_t extra) {
-    const std::array<double, 4> link = {1e-9, 0.9, 0.9, 1e-9};
-    const std::array<std::uint32_t, 4> label = {2, 0, 3, 1};  // a numbering RCM alone gets wrong
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> upper;
-    for (std::uint32_t c = 0; c < 4; ++c)
-      upper.emplace_back(std::min(label[c], label[(c + 1) % 4]), std::max(label[c], label[(c + 1) % 4]));
-    BlockSparseMatrix A;
-    A.set_pattern(4 + extra, upper);
-    for (std::size_t i = 0; i < 4 + extra; ++i) A.diagonal(i) = (i < 4 ? 1.0 : 100.0) * Mat6::Identity();
-    for (std::uint32_t c = 0; c < 4; ++c) {
-      const std::uint32_t i = label[c], j = label[(c + 1) % 4];
-      A.diagonal(i) += link[c] * Mat6::Identity();
-      A.diagonal(j) += link[c] * Mat6::Identity();
-      A.upper(A.find(std::min(i, j), std::max(i, j))) = -link[c] * Mat6::Identity();
-    }
-    return A;
-  };
   auto preconditioned = [](const BlockSparseMatrix& A, fldsim::RowOrder order) {
     BlockPCG pcg(fldsim::Preconditioner::IncompleteCholesky);
     pcg.set_row_order(order);
@@ -619,7 +606,7 @@ TEST(BlockIncompleteCholesky, AutomaticRowOrderGradesOnlyABroadStiffness) {
   };
   using fldsim::RowOrder;
   for (const std::size_t extra : {std::size_t(0), std::size_t(5)}) {
-    const BlockSparseMatrix A = cycle(extra);
+    const BlockSparseMatrix A = soft_corner_cycle({2, 0, 3, 1}, extra);  // a numbering RCM alone gets wrong
     const Eigen::VectorXd automatic = preconditioned(A, RowOrder::Automatic);
     const Eigen::VectorXd graded = preconditioned(A, RowOrder::StiffnessGraded);
     const Eigen::VectorXd structural = preconditioned(A, RowOrder::CuthillMcKee);

@@ -18,6 +18,9 @@ constexpr std::pair<Preconditioner, const char*> kPreconditionerNames[] = {
     {Preconditioner::IncompleteCholesky, "incomplete_cholesky"},
     {Preconditioner::EisenstatDilu, "eisenstat_dilu"},
     {Preconditioner::BlockJacobi, "block_jacobi"}};
+constexpr std::pair<RowOrder, const char*> kRowOrderNames[] = {{RowOrder::Automatic, "auto"},
+                                                               {RowOrder::StiffnessGraded, "stiffness"},
+                                                               {RowOrder::CuthillMcKee, "cuthill_mckee"}};
 
 std::string preconditioner_name(Preconditioner p) {
   for (const auto& [kind, name] : kPreconditionerNames)
@@ -177,9 +180,8 @@ ModelSettings read_lubrication_params(const Params& p) {
   for (const auto& [kind, name] : kPreconditionerNames)
     if (p.text("preconditioner") == name) s.preconditioner = kind;
   s.ic_shifts = p.numbers("ic_shifts");
-  s.ic_order = p.text("ic_order") == "cuthill_mckee" ? RowOrder::CuthillMcKee
-               : p.text("ic_order") == "stiffness"   ? RowOrder::StiffnessGraded
-                                                     : RowOrder::Automatic;
+  for (const auto& [kind, name] : kRowOrderNames)
+    if (p.text("ic_order") == name) s.ic_order = kind;
   for (std::size_t k = 0; k < s.ic_shifts.size(); ++k)
     if (!(s.ic_shifts[k] > 0.0 && s.ic_shifts[k] <= 100.0) || (k > 0 && s.ic_shifts[k] <= s.ic_shifts[k - 1]))
       p.fail("ic_shifts", "expected increasing shifts in (0, 100], e.g. [0.01, 0.04, 0.16, 0.64]");
