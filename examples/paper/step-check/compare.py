@@ -62,6 +62,8 @@ def groups_of(args, names):
 
 def main():
     args = sys.argv[1:]
+    if not args or args[0] in ("-h", "--help"):
+        sys.exit(__doc__)
     if "--" in args:
         k = args.index("--")
         args, names = args[:k], args[k + 1:]
