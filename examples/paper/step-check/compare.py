@@ -55,8 +55,10 @@ def groups_of(args, names):
     out = []
     for a in args:
         label, pattern = a.split("=", 1)
-        out.append((label, [read_row(f, names) for f in sorted(glob.glob(pattern))
-                            if f.endswith(".h5") and os.path.basename(f) != "study.h5"]))
+        files = [f for f in sorted(glob.glob(pattern)) if f.endswith(".h5") and os.path.basename(f) != "study.h5"]
+        if not files:
+            sys.exit(f"compare.py: {a} matches no result file")
+        out.append((label, [read_row(f, names) for f in files]))
     return out
 
 
