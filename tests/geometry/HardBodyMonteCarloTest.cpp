@@ -247,28 +247,31 @@ TEST(HardBodyMonteCarlo, CompressionOverlapsAreRemovedWithoutDeepening) {
 }
 
 // The start of a dense suspension samples the hard-body equilibrium, whatever route the
-// compression took: the number of neighbours within 0.1 a of contact per sphere at phi 0.45,
-// mean over 24 independent starts (N = 216, seeds 1-24), against the same quantity along one long
-// hard-sphere MC chain of the same N and phi (the exact oracle; 20-sweep samples, SE from 16
-// blocks of 1000 sweeps, much longer than its correlation). z < 3 on the combined SE.
-TEST(HardBodyMonteCarlo, DenseStartsSampleTheHardSphereEquilibrium) {
-  const double phi = 0.45, shell = 2.1;
-  const std::size_t n = 216;
-  auto shape = std::make_shared<shapes::SphereShape>(1.0);
+// compression took: the number of body centres at [r_in, r_out) from a body, mean over `starts`
+// independent starts (seeds 1, 2, ...), against the same quantity along one long hard-body MC
+// chain of the same N and phi (the exact oracle; 20-sweep samples, SE from 16 blocks of 1000
+// sweeps, much longer than its correlation). z < 3 on the combined SE, and that SE below
+// `max_se` of the chain's mean (the deviation the check must resolve, over 3).
+namespace {
+void expect_starts_sample_the_equilibrium(std::shared_ptr<const Shape> shape, std::size_t n, double phi,
+                                          double r_in, double r_out, int starts, double max_se) {
   auto close_neighbours = [&](const System& s) {
     const auto& x = s.positions();
     int count = 0;
     for (std::size_t i = 0; i < n; ++i)
-      for (std::size_t j = i + 1; j < n; ++j) count += s.box().minimum_image(x[j] - x[i]).norm() < shell;
+      for (std::size_t j = i + 1; j < n; ++j) {
+        const double r = s.box().minimum_image(x[j] - x[i]).norm();
+        count += r >= r_in && r < r_out;
+      }
     return 2.0 * count / double(n);
   };
-  std::vector<double> starts;
-  for (std::uint64_t seed = 1; seed <= 24; ++seed) {
+  std::vector<double> values;
+  for (std::uint64_t seed = 1; seed <= std::uint64_t(starts); ++seed) {
     auto s = make_system(shape, n, phi);
     MonteCarloOptions opt;
     opt.seed = seed;
     initialise_monte_carlo(*s, opt);
-    starts.push_back(close_neighbours(*s));
+    values.push_back(close_neighbours(*s));
   }
   auto mean_se = [](const std::vector<double>& v) {
     double mean = 0.0, var = 0.0;
@@ -291,13 +294,30 @@ TEST(HardBodyMonteCarlo, DenseStartsSampleTheHardSphereEquilibrium) {
     }
     blocks.push_back(sum);
   }
-  const auto [start_mean, start_se] = mean_se(starts);
+  const auto [start_mean, start_se] = mean_se(values);
   const auto [chain_mean, chain_se] = mean_se(blocks);
   const double z = (start_mean - chain_mean) / std::hypot(start_se, chain_se);
-  std::printf("neighbours within %.2f a: starts %.4f +- %.4f, chain %.4f +- %.4f, z %.2f\n", shell,
+  std::printf("neighbours at %.2f-%.2f a: starts %.4f +- %.4f, chain %.4f +- %.4f, z %.2f\n", r_in, r_out,
               start_mean, start_se, chain_mean, chain_se, z);
-  EXPECT_LT(std::hypot(start_se, chain_se), 0.03 * chain_mean);  // resolves a 10 % deviation at 3 SE
+  EXPECT_LT(std::hypot(start_se, chain_se), max_se * chain_mean);
   EXPECT_LT(std::abs(z), 3.0);
+}
+}  // namespace
+
+TEST(HardBodyMonteCarlo, DenseStartsSampleTheHardSphereEquilibrium) {
+  expect_starts_sample_the_equilibrium(std::make_shared<shapes::SphereShape>(1.0), 216, 0.45, 0.0, 2.1, 24,
+                                       0.03);  // resolves a 10 % deviation at 3 SE
+}
+
+// Fused dumbbells (c/a 1) at phi 0.5 reach the target with the lattice forgotten during the
+// compression (mean-square displacement > 4 a^2 already): the start must also forget the
+// compression. Body centres at 2.0-2.2 a (side-by-side pairs). With the lattice clock alone (the
+// rule until December 2026: relaxation_msd = 0, relaxation_p2 = 2) the starts read 0.638 +- 0.020
+// against the chain's 0.561 +- 0.006 (z 3.6) and this test failed; with the second clock 0.568 +-
+// 0.016 (z 0.4). docs/equilibrium-oracle.md, "Starts".
+TEST(HardBodyMonteCarlo, DenseFusedDumbbellStartsForgetTheCompression) {
+  expect_starts_sample_the_equilibrium(std::make_shared<shapes::DicolloidShape>(1.0, 1.0, 1.0), 216, 0.5, 2.0,
+                                       2.2, 16, 0.035);
 }
 
 TEST(PlaceExplicit, NamesTheOverlappingBodies) {

@@ -52,7 +52,14 @@ HardBodyMonteCarlo::HardBodyMonteCarlo(System& s, std::uint64_t seed)
   displacement_.assign(n, Vec3::Zero());
   director0_.resize(n);
   for (std::size_t i = 0; i < n; ++i) director0_[i] = s.director(i);
+  mark();
   rebuild_cells();
+}
+
+void HardBodyMonteCarlo::mark() {
+  displacement_mark_ = displacement_;
+  director_mark_.resize(s_.size());
+  for (std::size_t i = 0; i < s_.size(); ++i) director_mark_[i] = s_.director(i);
 }
 
 void HardBodyMonteCarlo::rebuild_cells() {
@@ -257,6 +264,22 @@ double HardBodyMonteCarlo::mean_square_displacement() const {
   return displacement_.empty() ? 0.0 : sum / double(displacement_.size());
 }
 
+double HardBodyMonteCarlo::mean_square_displacement_since_mark() const {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < displacement_.size(); ++i)
+    sum += (displacement_[i] - displacement_mark_[i]).squaredNorm();
+  return displacement_.empty() ? 0.0 : sum / double(displacement_.size());
+}
+
+double HardBodyMonteCarlo::orientation_p2_since_mark() const {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < s_.size(); ++i) {
+    const double c = s_.director(i).dot(director_mark_[i]);
+    sum += 1.5 * c * c - 0.5;
+  }
+  return s_.size() ? sum / double(s_.size()) : 0.0;
+}
+
 double HardBodyMonteCarlo::orientation_p2() const {
   double sum = 0.0;
   for (std::size_t i = 0; i < s_.size(); ++i) {
@@ -313,7 +336,9 @@ MonteCarloReport initialise_monte_carlo(System& s, const MonteCarloOptions& opt,
     if (!log) return;
     std::ostringstream o;
     o << "monte carlo: " << what << " after " << mc.sweeps_done() << " sweeps (box " << s.box().edge()
-      << ", msd " << mc.mean_square_displacement() << ", P2 " << mc.orientation_p2() << ")";
+      << ", msd " << mc.mean_square_displacement() << ", P2 " << mc.orientation_p2()
+      << "; since the target msd " << mc.mean_square_displacement_since_mark() << ", P2 "
+      << mc.orientation_p2_since_mark() << ")";
     log(o.str());
   };
   // A dense or large start can take a while (8000 spheres at phi 0.5: 26 s, homonuclear
@@ -357,6 +382,7 @@ MonteCarloReport initialise_monte_carlo(System& s, const MonteCarloOptions& opt,
     check_stop();
     say_now_and_then("still compressing");
   }
+  mc.mark();
   say("reached the target volume fraction");
 
   // Hard-body MC: adapt the steps briefly, then keep them fixed.
@@ -369,7 +395,9 @@ MonteCarloReport initialise_monte_carlo(System& s, const MonteCarloOptions& opt,
   const bool rotate = s.shape().anisotropic();
   auto decorrelated = [&](std::int64_t done) {
     return done >= min_sweeps && mc.mean_square_displacement() > opt.decorrelation_msd &&
-           (!rotate || mc.orientation_p2() < opt.decorrelation_p2);
+           mc.mean_square_displacement_since_mark() > opt.relaxation_msd &&
+           (!rotate || (mc.orientation_p2() < opt.decorrelation_p2 &&
+                        mc.orientation_p2_since_mark() < opt.relaxation_p2));
   };
   std::int64_t done = adapt_sweeps;
   while (opt.sweeps > 0 ? done < opt.sweeps : !decorrelated(done)) {
