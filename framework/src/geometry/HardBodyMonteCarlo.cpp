@@ -258,35 +258,33 @@ void HardBodyMonteCarlo::reset_counters() {
   tried_t_ = accepted_t_ = tried_r_ = accepted_r_ = 0;
 }
 
-double HardBodyMonteCarlo::mean_square_displacement() const {
-  double sum = 0.0;
-  for (const auto& d : displacement_) sum += d.squaredNorm();
-  return displacement_.empty() ? 0.0 : sum / double(displacement_.size());
-}
-
-double HardBodyMonteCarlo::mean_square_displacement_since_mark() const {
+double HardBodyMonteCarlo::mean_square_displacement_from(const std::vector<Vec3>* origin) const {
   double sum = 0.0;
   for (std::size_t i = 0; i < displacement_.size(); ++i)
-    sum += (displacement_[i] - displacement_mark_[i]).squaredNorm();
+    sum += (origin ? displacement_[i] - (*origin)[i] : displacement_[i]).squaredNorm();
   return displacement_.empty() ? 0.0 : sum / double(displacement_.size());
 }
 
-double HardBodyMonteCarlo::orientation_p2_since_mark() const {
+double HardBodyMonteCarlo::orientation_p2_against(const std::vector<Vec3>& directors) const {
   double sum = 0.0;
   for (std::size_t i = 0; i < s_.size(); ++i) {
-    const double c = s_.director(i).dot(director_mark_[i]);
+    const double c = s_.director(i).dot(directors[i]);
     sum += 1.5 * c * c - 0.5;
   }
   return s_.size() ? sum / double(s_.size()) : 0.0;
 }
 
+double HardBodyMonteCarlo::mean_square_displacement() const {
+  return mean_square_displacement_from(nullptr);
+}
+double HardBodyMonteCarlo::mean_square_displacement_since_mark() const {
+  return mean_square_displacement_from(&displacement_mark_);
+}
 double HardBodyMonteCarlo::orientation_p2() const {
-  double sum = 0.0;
-  for (std::size_t i = 0; i < s_.size(); ++i) {
-    const double c = s_.director(i).dot(director0_[i]);
-    sum += 1.5 * c * c - 0.5;
-  }
-  return s_.size() ? sum / double(s_.size()) : 0.0;
+  return orientation_p2_against(director0_);
+}
+double HardBodyMonteCarlo::orientation_p2_since_mark() const {
+  return orientation_p2_against(director_mark_);
 }
 
 std::int64_t HardBodyMonteCarlo::count_overlaps() const {

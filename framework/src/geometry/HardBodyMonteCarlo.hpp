@@ -109,6 +109,9 @@ class HardBodyMonteCarlo {
 
  private:
   void rebuild_cells();
+  // Mean over bodies of |displacement - origin|^2 (origin null: since construction), of P2(n . n_ref).
+  double mean_square_displacement_from(const std::vector<Vec3>* origin) const;
+  double orientation_p2_against(const std::vector<Vec3>& directors) const;
   // Overlaps of a node of `body` at x with nodes of other bodies: how many, and the summed depth
   // sum(r_a + r_b - d); stops at the first when `first_only`.
   struct Overlap {
