@@ -320,6 +320,28 @@ TEST(HardBodyMonteCarlo, DenseFusedDumbbellStartsForgetTheCompression) {
                                        2.2, 16, 0.035);
 }
 
+// A volume fraction where hard spheres are glassy or crystalline: bodies cannot travel 2 a, so the
+// rule is not met; at max_sweeps the start ends overlap-free and reports that it did not decorrelate
+// (instead of throwing "no valid configuration" after a long wait). At phi 0.3 it decorrelates.
+TEST(HardBodyMonteCarlo, GlassyStartEndsAtMaxSweepsValidAndSaysSo) {
+  auto shape = std::make_shared<shapes::SphereShape>(1.0);
+  auto s = make_system(shape, 64, 0.6);
+  MonteCarloOptions opt;
+  opt.max_sweeps = 20000;
+  const MonteCarloReport r = initialise_monte_carlo(*s, opt);
+  EXPECT_FALSE(r.decorrelated);
+  EXPECT_EQ(r.sweeps, opt.max_sweeps);
+  EXPECT_EQ(r.overlaps, 0);
+  EXPECT_EQ(brute_overlaps(*s), 0);
+  EXPECT_NEAR(r.final_volume_fraction, 0.6, 1e-12);
+  EXPECT_LT(r.msd_since_target, opt.relaxation_msd);
+
+  auto t = make_system(shape, 64, 0.3);
+  const MonteCarloReport q = initialise_monte_carlo(*t, opt);
+  EXPECT_TRUE(q.decorrelated);
+  EXPECT_GT(q.msd_since_target, opt.relaxation_msd);
+}
+
 TEST(PlaceExplicit, NamesTheOverlappingBodies) {
   auto shape = std::make_shared<shapes::DicolloidShape>(1.0, 1.0, 1.0);
   auto s = make_system(shape, 3, 0.01);

@@ -397,15 +397,18 @@ MonteCarloReport initialise_monte_carlo(System& s, const MonteCarloOptions& opt,
            (!rotate || (mc.orientation_p2() < opt.decorrelation_p2 &&
                         mc.orientation_p2_since_mark() < opt.relaxation_p2));
   };
+  // The configuration is valid from here on: at max_sweeps (a glassy or crystalline volume fraction,
+  // whose bodies cannot travel 2 a) the start ends undecorrelated and says so, rather than throw.
   std::int64_t done = adapt_sweeps;
   while (opt.sweeps > 0 ? done < opt.sweeps : !decorrelated(done)) {
+    if (mc.sweeps_done() >= opt.max_sweeps) break;
     mc.sweep();
     ++done;
-    check_budget();
     check_stop();
     say_now_and_then("still equilibrating");
   }
-  say("equilibrated");
+  const bool forgot = opt.sweeps > 0 || decorrelated(done);
+  say(forgot ? "equilibrated" : "stopped at max_sweeps without decorrelating");
 
   MonteCarloReport report;
   report.sweeps = mc.sweeps_done();
@@ -414,6 +417,9 @@ MonteCarloReport initialise_monte_carlo(System& s, const MonteCarloOptions& opt,
   report.final_volume_fraction = volume_fraction(s.box().edge());
   report.overlaps = mc.count_overlaps();
   report.max_displacement = mc.translation_step();
+  report.decorrelated = forgot;
+  report.msd_since_target = mc.mean_square_displacement_since_mark();
+  report.p2_since_target = rotate ? mc.orientation_p2_since_mark() : 0.0;
   return report;
 }
 

@@ -51,11 +51,12 @@ struct MonteCarloOptions {
   std::int64_t sweeps = 0;  // 0 = automatic: until decorrelated
   double target_acceptance = 0.35;
   std::uint64_t seed = 1;
-  double decorrelation_msd = 4.0;     // a^2, mean-square displacement since the lattice
-  double decorrelation_p2 = 0.05;     // <P2(n(t).n(0))> since the lattice must fall below this
-  double relaxation_msd = 4.0;        // a^2, mean-square displacement since the target was reached
-  double relaxation_p2 = 0.05;        // <P2(n(t).n(0))> since the target was reached
-  std::int64_t max_sweeps = 1000000;  // give up (throw) beyond this
+  double decorrelation_msd = 4.0;  // a^2, mean-square displacement since the lattice
+  double decorrelation_p2 = 0.05;  // <P2(n(t).n(0))> since the lattice must fall below this
+  double relaxation_msd = 4.0;     // a^2, mean-square displacement since the target was reached
+  double relaxation_p2 = 0.05;     // <P2(n(t).n(0))> since the target was reached
+  // Compression: throw beyond this many sweeps; at the target: stop there, undecorrelated.
+  std::int64_t max_sweeps = 1000000;
   // Pairs allowed to overlap after a compression step, per body (K = this x N, at least 1); the
   // sweeps remove them before the next step. 0: every step stops short of the first contact.
   double compression_overlaps = 0.05;
@@ -70,6 +71,10 @@ struct MonteCarloReport {
   double final_volume_fraction;
   std::int64_t overlaps;
   double max_displacement;
+  // Whether the automatic rule was met (true with a fixed `sweeps`); false when max_sweeps ended
+  // the sweeps at the target first (the configuration is still overlap-free).
+  bool decorrelated = true;
+  double msd_since_target = 0.0, p2_since_target = 0.0;  // a^2; 0 for isotropic shapes
 };
 
 // One hard-body MC chain on a System (which must be overlap-free). Keeps positions wrapped in
