@@ -339,7 +339,7 @@ MonteCarloReport initialise_monte_carlo(System& s, const MonteCarloOptions& opt,
       << mc.orientation_p2_since_mark() << ")";
     log(o.str());
   };
-  // A dense or large start can take a while (8000 spheres at phi 0.5: 26 s, homonuclear
+  // A dense or large start can take a while (8000 spheres at phi 0.5: 58 s, homonuclear
   // dicolloids equilibrate slowly): a line every 30 s of wall time says where it is (the
   // configuration does not depend on it).
   auto last_line = std::chrono::steady_clock::now();

@@ -72,11 +72,11 @@ void place_by_monte_carlo(System& sys, const Experiment& ex, std::ostream& log) 
       << std::defaultfloat;
   if (r.overlaps != 0) throw Error("Monte Carlo start left " + std::to_string(r.overlaps) + " overlaps");
   if (!r.decorrelated)
-    log << "warning: the start is overlap-free but has not forgotten its compression after " << r.sweeps
-        << " sweeps (mean-square displacement since the target " << r.msd_since_target << " a^2 of 4, P2 "
-        << r.p2_since_target
-        << " of 0.05): phi this high is glassy or crystalline for hard bodies; let the run relax before "
-           "observers start, or set system.init.sweeps\n";
+    log << "warning: the start is overlap-free but did not decorrelate within " << r.sweeps
+        << " sweeps (since the compression ended: mean-square displacement " << r.msd_since_target
+        << " a^2, P2 " << r.p2_since_target
+        << "; the rule asks > 4 a^2 and < 0.05): phi this high is glassy or crystalline for hard bodies; "
+           "let the run relax before observers start, or set system.init.sweeps\n";
 }
 
 }  // namespace
