@@ -65,6 +65,10 @@ BrownianEquilibrium run_brownian(const EquilibriumScene& scene, const BrownianOp
   System& s = *sc.system;
   geometry::MonteCarloOptions start;
   start.seed = opt.seed;
+  if (!opt.start_forgets_compression) {
+    start.relaxation_msd = 0.0;
+    start.relaxation_p2 = 2.0;
+  }
   geometry::initialise_monte_carlo(s, start);
   auto repulsion = make<ForceLaw>("force", "repulsion", scene.force_params);
   sc.finish(make<HydroModel>("hydro", scene.hydro, scene.hydro_params), {repulsion},

@@ -54,6 +54,10 @@ struct BrownianOptions {
   // without exp(-U(0)/kT)), to tell a run that samples the wrong contact density from a stress
   // estimator that misreads the right one. Nodes of one radius only.
   bool contact_term = false;
+  // The Monte Carlo start's rule (geometry/HardBodyMonteCarlo.hpp): false = the lattice clock
+  // only, the rule until December 2026 whose dense starts had not forgotten the compression (the
+  // broken variant for the validation's fused_phi05_lattice_start).
+  bool start_forgets_compression = true;
 };
 
 struct BrownianEquilibrium {

@@ -13,17 +13,19 @@
 // tolerance 1e-3 a), fld_auto_spheres, fld_auto_dicolloid02 (FLD at dt: auto against the hard core,
 // as AdaptiveEquilibriumTest: g(r) and, with contact_term, the contact term within 3 SE),
 // pressure_fld_spheres, pressure_fld_dicolloid02, pressure_fld_dicolloid1 (FLD defaults at dt 2.5e-4, 32
-// runs: the stress observer's Z_particle against the hard-core oracle's equation of state). Keys: n, phi, dt,
+// runs: the stress observer's Z_particle against the hard-core oracle's equation of state),
+// fused_phi05 (fused dumbbells, phi 0.5, N 1000, FLD at 8e-4, 16 runs) and fused_phi05_lattice_start
+// (the same from the starts of the rule until December 2026: must fail). Keys: n, phi, dt,
 // duration, equilibrate, blocks, every, seed, hydro, hydro_params, force_params, drift (midpoint|none),
 // integrator (euler_maruyama|rk3: the paper's RK3 with frozen Brownian forces; fixed dt),
 // oracle_sweeps, oracle_blocks, stress_every, max_overlap, adaptive (0|1), tolerance, reject_at, rejected
-// (bridge|redraw), hard_core (0|1: the oracle's), contact_term (0|1: the hard core's contact term of the
-// run's own configurations against the oracle's), runs (R > 0: R independent runs of equilibrate + duration,
-// seeds seed .. seed + R - 1, one block each, as the CI tests do), rebin (comparison bins of rebin x 0.01 a;
-// 2). Prints per case: g(r) bin table (0.02 a), the 0.01 a bins around contact (2.00-2.10 a) and around the
-// lubrication cutoff (2.40-2.60 a) as ratios g_BD/g_MC, the contact shell 2.00-2.05 a, and Z (configurational
-// virial and stress observer) against the oracle. Exit code 1 if a case that should pass fails (or one that
-// should fail passes).
+// (bridge|redraw), start_rule (both|lattice: the Monte Carlo start's clocks), hard_core (0|1: the oracle's),
+// contact_term (0|1: the hard core's contact term of the run's own configurations against the oracle's), runs
+// (R > 0: R independent runs of equilibrate + duration, seeds seed .. seed + R - 1, one block each, as the CI
+// tests do), rebin (comparison bins of rebin x 0.01 a; 2). Prints per case: g(r) bin table (0.02 a), the 0.01
+// a bins around contact (2.00-2.10 a) and around the lubrication cutoff (2.40-2.60 a) as ratios g_BD/g_MC,
+// the contact shell 2.00-2.05 a, and Z (configurational virial and stress observer) against the oracle. Exit
+// code 1 if a case that should pass fails (or one that should fail passes).
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -196,6 +198,21 @@ std::map<std::string, Case> cases() {
     f.particle_pressure = true;
     c[std::string("pressure_fld_") + shape.suffix] = f;
   }
+  // Fused dumbbells at phi 0.5, N = 1000 (docs/equilibrium-oracle.md, "Starts"): FLD at the measured
+  // 8e-4 a^2/D0 of examples/paper/sweep-measured-steps.yaml, 16 runs of 0.2 + 1 a^2/D0, against the
+  // hard core. Must fail from the starts of the old rule (lattice clock only: contact shell 1.10).
+  Case fused = with_shape(base, kShapes[2]);
+  fused.scene.count = 1000;
+  fused.scene.phi = 0.5;
+  fused.runs = 16;
+  fused.bd.dt = 8e-4;
+  fused.bd.sample_every = 10;
+  fused.bd.equilibrate = 0.2;
+  fused.bd.duration = 1.0;
+  c["fused_phi05"] = fused;
+  fused.bd.start_forgets_compression = false;
+  fused.expect_pass = false;
+  c["fused_phi05_lattice_start"] = fused;
   return c;
 }
 
@@ -259,7 +276,10 @@ void apply(Case& c, const std::string& kv) {
     c.bd.reject_at = std::stod(v);
   else if (k == "contact_term")
     c.bd.contact_term = v == "1";
-  else if (k == "rejected")
+  else if (k == "start_rule") {
+    if (v != "both" && v != "lattice") throw std::runtime_error("start_rule: expected both or lattice");
+    c.bd.start_forgets_compression = v == "both";
+  } else if (k == "rejected")
     c.bd.rejected = v == "redraw" ? RejectedNoise::Redraw : RejectedNoise::Bridge;
   else
     throw std::runtime_error("unknown key " + k);
