@@ -74,8 +74,9 @@ void place_by_monte_carlo(System& sys, const Experiment& ex, std::ostream& log) 
   if (!r.decorrelated)
     log << "warning: the start is overlap-free but did not decorrelate within " << r.sweeps
         << " sweeps (since the compression ended: mean-square displacement " << r.msd_since_target
-        << " a^2, P2 " << r.p2_since_target
-        << "; the rule asks > 4 a^2 and < 0.05): phi this high is glassy or crystalline for hard bodies; "
+        << " a^2, P2 " << r.p2_since_target << "; the rule asks > " << opt.relaxation_msd << " a^2 and < "
+        << opt.relaxation_p2
+        << "): phi this high is glassy or crystalline for hard bodies; "
            "let the run relax before observers start, or set system.init.sweeps\n";
 }
 
