@@ -342,6 +342,27 @@ TEST(HardBodyMonteCarlo, GlassyStartEndsAtMaxSweepsValidAndSaysSo) {
   EXPECT_GT(q.msd_since_target, opt.relaxation_msd);
 }
 
+// A fixed `sweeps` (system.init.sweeps) that max_sweeps cuts short is reported as not done (the
+// code of 7 December 2026 morning reported it as done, and the run log said nothing).
+TEST(HardBodyMonteCarlo, FixedSweepsCutShortByMaxSweepsAreReported) {
+  auto shape = std::make_shared<shapes::SphereShape>(1.0);
+  auto s = make_system(shape, 64, 0.3);
+  MonteCarloOptions opt;
+  opt.sweeps = 400;
+  opt.max_sweeps = 250;  // phi 0.3: one sweep of compression, the rest at the target
+  const MonteCarloReport r = initialise_monte_carlo(*s, opt);
+  EXPECT_FALSE(r.decorrelated);
+  EXPECT_EQ(r.sweeps, opt.max_sweeps);
+  EXPECT_LT(r.sweeps_at_target, opt.sweeps);
+  EXPECT_EQ(brute_overlaps(*s), 0);
+
+  auto t = make_system(shape, 64, 0.3);
+  opt.max_sweeps = 1000;
+  const MonteCarloReport q = initialise_monte_carlo(*t, opt);
+  EXPECT_TRUE(q.decorrelated);
+  EXPECT_EQ(q.sweeps_at_target, opt.sweeps);
+}
+
 TEST(PlaceExplicit, NamesTheOverlappingBodies) {
   auto shape = std::make_shared<shapes::DicolloidShape>(1.0, 1.0, 1.0);
   auto s = make_system(shape, 3, 0.01);

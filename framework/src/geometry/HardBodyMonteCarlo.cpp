@@ -407,8 +407,12 @@ MonteCarloReport initialise_monte_carlo(System& s, const MonteCarloOptions& opt,
     check_stop();
     say_now_and_then("still equilibrating");
   }
-  const bool forgot = opt.sweeps > 0 || decorrelated(done);
-  say(forgot ? "equilibrated" : "stopped at max_sweeps without decorrelating");
+  // A fixed `sweeps` counts as done only if max_sweeps did not cut it short (a long compression
+  // can use up most of max_sweeps).
+  const bool forgot = opt.sweeps > 0 ? done >= opt.sweeps : decorrelated(done);
+  say(forgot           ? "equilibrated"
+      : opt.sweeps > 0 ? "stopped at max_sweeps before the requested sweeps were done"
+                       : "stopped at max_sweeps without decorrelating");
 
   MonteCarloReport report;
   report.sweeps = mc.sweeps_done();
@@ -418,6 +422,7 @@ MonteCarloReport initialise_monte_carlo(System& s, const MonteCarloOptions& opt,
   report.overlaps = mc.count_overlaps();
   report.max_displacement = mc.translation_step();
   report.decorrelated = forgot;
+  report.sweeps_at_target = done;
   report.msd_since_target = mc.mean_square_displacement_since_mark();
   report.p2_since_target = rotate ? mc.orientation_p2_since_mark() : 0.0;
   return report;

@@ -71,9 +71,11 @@ struct MonteCarloReport {
   double final_volume_fraction;
   std::int64_t overlaps;
   double max_displacement;
-  // Whether the automatic rule was met (true with a fixed `sweeps`); false when max_sweeps ended
-  // the sweeps at the target first (the configuration is still overlap-free).
+  // Whether the start ran its course: the automatic rule was met, or a fixed `sweeps` were all
+  // done at the target; false when max_sweeps ended the sweeps at the target first (the
+  // configuration is still overlap-free).
   bool decorrelated = true;
+  std::int64_t sweeps_at_target = 0;  // sweeps after the compression (those a fixed `sweeps` counts)
   double msd_since_target = 0.0, p2_since_target = 0.0;  // a^2; 0 for isotropic shapes
 };
 

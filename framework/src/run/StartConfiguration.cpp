@@ -71,7 +71,11 @@ void place_by_monte_carlo(System& sys, const Experiment& ex, std::ostream& log) 
       << ", overlaps " << r.overlaps << "\n"
       << std::defaultfloat;
   if (r.overlaps != 0) throw Error("Monte Carlo start left " + std::to_string(r.overlaps) + " overlaps");
-  if (!r.decorrelated)
+  if (!r.decorrelated && opt.sweeps > 0)
+    log << "warning: the start is overlap-free but ran only " << r.sweeps_at_target << " of the "
+        << opt.sweeps << " sweeps of system.init.sweeps at the target: the compression used most of the "
+        << opt.max_sweeps << " sweeps a start may take; let the run relax before observers start\n";
+  else if (!r.decorrelated)
     log << "warning: the start is overlap-free but did not decorrelate within " << r.sweeps
         << " sweeps (since the compression ended: mean-square displacement " << r.msd_since_target
         << " a^2, P2 " << r.p2_since_target << "; the rule asks > " << opt.relaxation_msd << " a^2 and < "
