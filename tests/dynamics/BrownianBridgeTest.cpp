@@ -11,11 +11,14 @@
 #include <cmath>
 #include <vector>
 
+#include "Scene.hpp"
 #include "dynamics/BrownianBridge.hpp"
 #include "fldsim/random.hpp"
+#include "geometry/HardBodyMonteCarlo.hpp"
 
 namespace fldsim {
 namespace {
+using testing::make;
 
 // W of `iv` for one Wiener component (object, index) of the path with `seed`.
 double increment(const BrownianBridge& bridge, std::uint64_t seed, const NoiseInterval& iv,
@@ -114,6 +117,82 @@ TEST(BrownianBridge, RedrawGivesEveryAttemptFreshNumbers) {
   EXPECT_NE(t[0].stage, 0u);
   EXPECT_GE(t[0].stage, 0x80000000u);  // never a stage of the bridge
   EXPECT_DOUBLE_EQ(t[0].coefficient, std::sqrt(0.5));
+}
+
+// A stream standing for a NormalCombination draws sum_j c_j (the normals of stage j), for either
+// purpose, and a one-term combination (stage 0, coefficient 1) is the plain stream bit for bit.
+TEST(RandomStreamCombination, IsTheSumOfItsStagesNormals) {
+  NormalCombination c;
+  c.count = 4;
+  c.stage = {0u, 1u, 3u, 6u};
+  c.coefficient = {0.125, -0.3, 0.7, 0.05};
+  const RandomStream base(5, RandomPurpose::BodyNoise, 123);
+  for (RandomPurpose purpose : {RandomPurpose::BodyNoise, RandomPurpose::PairNoise}) {
+    const RandomStream combined = base.combined(c).for_purpose(purpose);
+    for (std::uint64_t object : {0ull, 17ull, (3ull << 32) | 4ull})
+      for (std::uint32_t index = 0; index < 8; ++index) {
+        std::array<double, 2> sum{0.0, 0.0};
+        for (int j = 0; j < c.count; ++j) {
+          const auto g = RandomStream(5, purpose, 123, c.stage[std::size_t(j)]).normal2(object, index);
+          sum[0] += c.coefficient[std::size_t(j)] * g[0];
+          sum[1] += c.coefficient[std::size_t(j)] * g[1];
+        }
+        const auto got = combined.normal2(object, index);
+        EXPECT_EQ(got[0], sum[0]);
+        EXPECT_EQ(got[1], sum[1]);
+      }
+  }
+  NormalCombination one;
+  one.count = 1;
+  one.stage[0] = 0u;
+  one.coefficient[0] = 1.0;
+  double plain[6], through[6];
+  base.normals(9, plain, 6);
+  base.combined(one).normals(9, through, 6);
+  for (int k = 0; k < 6; ++k) EXPECT_EQ(through[k], plain[k]);
+}
+
+// draw_brownian at a dyadic piece of depth d calls the hydro model once with the combined stream
+// (since 7 December 2026); it must give the F_B of the old d + 1 calls, one per stage, summed with
+// the bridge's coefficients (the model's draw is linear in its normals): FLD on fused dumbbells,
+// the pair noise of their node pairs and the R_0 noise of the bodies. Shown failing once with the
+// combination's coefficients not divided by sqrt(h) (relative error 1 - sqrt(h)).
+TEST(BrownianBridge, OneCombinedDrawEqualsTheSumOverStages) {
+  Physics ph;
+  ph.kT = 1.0;
+  ph.volume_fraction = 0.3;
+  auto shape = make<Shape>("shape", "dicolloid", "{a: 1, b: 1, c: 1}");
+  const std::size_t n = 64;
+  testing::Scene scene(shape, n, std::cbrt(double(n) * shape->volume() / 0.3), ph);
+  geometry::MonteCarloOptions opt;
+  opt.seed = 3;
+  geometry::initialise_monte_carlo(*scene.system, opt);
+  scene.finish(make<HydroModel>("hydro", "fld"), {}, HydroRequest{true, false, false});
+  scene.evaluator->prepare(*scene.system, false);
+  ASSERT_GT(scene.evaluator->pairs().pairs().size(), 0u);
+
+  const BrownianBridge bridge;
+  const std::uint64_t seed = 77;
+  for (const NoiseInterval iv : {NoiseInterval{12, 1e-3, 1, 1, 0}, NoiseInterval{12, 1e-3, 4, 9, 0}}) {
+    scene.evaluator->draw_brownian(*scene.system, seed, bridge, iv);
+    const std::vector<double> got(scene.evaluator->brownian_force(),
+                                  scene.evaluator->brownian_force() + 6 * n);
+    BrownianBridge::Terms terms;
+    const int m = bridge.terms(iv, terms);
+    std::vector<double> expected(6 * n, 0.0);
+    double scale = 0.0;
+    for (int j = 0; j < m; ++j) {
+      scene.evaluator->draw_brownian(
+          *scene.system, RandomStream(seed, RandomPurpose::BodyNoise, iv.base, terms[std::size_t(j)].stage),
+          1.0);
+      const double* f = scene.evaluator->brownian_force();
+      for (std::size_t k = 0; k < 6 * n; ++k)
+        expected[k] += terms[std::size_t(j)].coefficient / iv.duration() * f[k];
+    }
+    for (double v : expected) scale = std::max(scale, std::fabs(v));
+    for (std::size_t k = 0; k < 6 * n; ++k)
+      EXPECT_NEAR(got[k], expected[k], 1e-12 * scale) << "depth " << iv.depth << ", component " << k;
+  }
 }
 
 }  // namespace

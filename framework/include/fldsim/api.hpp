@@ -12,15 +12,16 @@
 // 4: HydroModel::provides_stresslets, no zero default for stresslet_sum; BlockPCG keeps its
 // preconditioners out of the public header; 5: HydroModel::save_state/restore_state, so a model
 // may carry state such as a preconditioner across steps and a resumed run still continues bit for
-// bit).
+// bit; 6: RandomStream may stand for a NormalCombination of stages, which its inline normal2()
+// must honour, so a plugin built with the old header would draw the wrong noise in adaptive steps).
 // Minor: additions a plugin built against an older minor can ignore (fldsim::PairEnergy, the
 // optional pair energy of a force law, came in 2.1 as a class of its own; fldsim::RunNotes, lines
 // a component puts in the run log, in 5.3; BlockSparseMatrix::copy_from in 5.4; BlockPCG::bind in
 // 5.5; parallel_loop.hpp in 5.6; BlockSparseMatrix::copy_pattern_from and set_pattern_for_overwrite in 5.7;
 // BlockPCG::set_shifts and shift, IC(0) retried with a diagonal shift before falling back, in 5.8;
 // RowOrder and BlockPCG::set_row_order, IC(0)'s rows graded by stiffness, in 5.9).
-#define FLDSIM_API_MAJOR 5
-#define FLDSIM_API_MINOR 9
+#define FLDSIM_API_MAJOR 6
+#define FLDSIM_API_MINOR 0
 
 #define FLDSIM_STR2(x) #x
 #define FLDSIM_STR(x) FLDSIM_STR2(x)

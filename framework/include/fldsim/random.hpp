@@ -44,8 +44,24 @@ class Philox4x32 {
   }
 };
 
+// A fixed linear combination of the normals of several stages of one (seed, purpose, step):
+// normal value = sum_j coefficient[j] * (the normal of stage[j]). The core uses it for the
+// Brownian increment of a dyadic piece of a time step (a Brownian bridge: one draw of the noise
+// of the piece, whatever the hydro model does with it, instead of one model call per stage).
+struct NormalCombination {
+  static constexpr int kMaxTerms = 32;
+  int count = 0;
+  std::array<std::uint32_t, kMaxTerms> stage{};
+  std::array<double, kMaxTerms> coefficient{};
+};
+
 // A stream of numbers for one (seed, purpose, step, stage) — e.g. "the Brownian noise of step
 // 1234, stage 0". Individual values are addressed by (object id, index).
+//
+// A stream may instead stand for a NormalCombination of stages (combined()): then normal2() and
+// normals() return the combination's values (still pure functions of the key, normally
+// distributed with variance sum_j coefficient[j]^2); its uniforms and bits() are those of stage
+// 0 of the combination's owner. The core passes such streams to HydroModel::brownian_force.
 class RandomStream {
  public:
   RandomStream(std::uint64_t seed, RandomPurpose purpose, std::uint64_t step, std::uint32_t stage = 0)
@@ -58,8 +74,18 @@ class RandomStream {
   // The stream of the same seed, step and stage for another purpose (e.g. the node-pair noise
   // that goes with a body-noise stream), so the two never share numbers.
   RandomStream for_purpose(RandomPurpose purpose) const {
-    return RandomStream(seed_, purpose, step_, stage_);
+    RandomStream other(seed_, purpose, step_, stage_);
+    other.combination_ = combination_;
+    return other;
   }
+
+  // The same seed, purpose and step standing for `c` (which must outlive the stream).
+  RandomStream combined(const NormalCombination& c) const {
+    RandomStream other(seed_, RandomPurpose(purpose_), step_, stage_);
+    other.combination_ = &c;
+    return other;
+  }
+  const NormalCombination* combination() const { return combination_; }
 
   // Four uniform 32-bit words for (object, block).
   Philox4x32::Counter bits(std::uint64_t object, std::uint32_t block) const {
@@ -101,13 +127,8 @@ class RandomStream {
   // nearly always suffices, and no index of normals() reaches 2^20 (n <= 2^16), so the pair stays
   // a pure function of its key.
   std::array<double, 2> normal2(std::uint64_t object, std::uint32_t index) const {
-    const Philox4x32::Counter b = bits(object, index);
-    const Ziggurat& t = ziggurat();
-    const int i0 = int(b[1] & 127u), i1 = int(b[3] & 127u);
-    const double u0 = to_signed_unit(b[0]), u1 = to_signed_unit(b[2]);
-    // Both attempts of the first block under their next layer: the usual case, in line.
-    if (std::abs(u0) < t.inner[i0] && std::abs(u1) < t.inner[i1]) return {u0 * t.width[i0], u1 * t.width[i1]};
-    return normal2_from_words(object, index);
+    if (combination_ != nullptr) return combined_normal2(object, index);
+    return plain_normal2(object, index);
   }
 
   // Fill n standard normals for one object (n <= 2^16).
@@ -120,6 +141,30 @@ class RandomStream {
   }
 
  private:
+  std::array<double, 2> plain_normal2(std::uint64_t object, std::uint32_t index) const {
+    const Philox4x32::Counter b = bits(object, index);
+    const Ziggurat& t = ziggurat();
+    const int i0 = int(b[1] & 127u), i1 = int(b[3] & 127u);
+    const double u0 = to_signed_unit(b[0]), u1 = to_signed_unit(b[2]);
+    // Both attempts of the first block under their next layer: the usual case, in line.
+    if (std::abs(u0) < t.inner[i0] && std::abs(u1) < t.inner[i1]) return {u0 * t.width[i0], u1 * t.width[i1]};
+    return normal2_from_words(object, index);
+  }
+
+  // sum_j c_j (normals of stage_j): each stage's own stream, as RandomStream(seed, purpose, step,
+  // stage_j) would draw them.
+  std::array<double, 2> combined_normal2(std::uint64_t object, std::uint32_t index) const {
+    const NormalCombination& c = *combination_;
+    std::array<double, 2> sum{0.0, 0.0};
+    for (int j = 0; j < c.count; ++j) {
+      const RandomStream term(seed_, RandomPurpose(purpose_), step_, c.stage[std::size_t(j)]);
+      const auto g = term.plain_normal2(object, index);
+      sum[0] += c.coefficient[std::size_t(j)] * g[0];
+      sum[1] += c.coefficient[std::size_t(j)] * g[1];
+    }
+    return sum;
+  }
+
   // The words of the blocks (object, index + k 2^20), k = 0, 1, ..., in order.
   struct WordCursor {
     const RandomStream& stream;
@@ -218,6 +263,7 @@ class RandomStream {
   std::uint64_t step_;
   std::uint32_t purpose_;
   std::uint32_t stage_;
+  const NormalCombination* combination_ = nullptr;
 };
 
 }  // namespace fldsim

@@ -14,8 +14,7 @@ VelocityEvaluator::VelocityEvaluator(std::shared_ptr<HydroModel> hydro,
       FB_(6 * bodies, 0.0),
       F_(6 * bodies, 0.0),
       dU_(6 * bodies, 0.0),
-      U_(6 * bodies, 0.0),
-      FB_term_(6 * bodies, 0.0) {}
+      U_(6 * bodies, 0.0) {}
 
 void VelocityEvaluator::prepare(System& s, bool want_virial) {
   list_.update(s);
@@ -40,12 +39,17 @@ void VelocityEvaluator::draw_brownian(const System& s, std::uint64_t seed, const
     hydro_->brownian_force(s, list_.pairs(), stream(terms_[0].stage), h, FB_.data());
     return;
   }
-  std::fill(FB_.begin(), FB_.end(), 0.0);
+  // F_B is linear in the normals, so the model draws the piece's increment W = sum_j c_j xi_j
+  // once, as the combination sum_j (c_j / sqrt(h)) xi_j of unit variance that it scales by
+  // sqrt(2 kT / h) like any draw: one pass over bodies and pairs at any depth (d + 1 passes,
+  // one per stage, before 7 December 2026: 7-15 % of an adaptive step at N = 1000).
+  combination_.count = n;
+  const double root_h = std::sqrt(h);
   for (int j = 0; j < n; ++j) {
-    hydro_->brownian_force(s, list_.pairs(), stream(terms_[std::size_t(j)].stage), 1.0, FB_term_.data());
-    const double c = terms_[std::size_t(j)].coefficient / h;
-    for (std::size_t k = 0; k < FB_.size(); ++k) FB_[k] += c * FB_term_[k];
+    combination_.stage[std::size_t(j)] = terms_[std::size_t(j)].stage;
+    combination_.coefficient[std::size_t(j)] = terms_[std::size_t(j)].coefficient / root_h;
   }
+  hydro_->brownian_force(s, list_.pairs(), stream(0).combined(combination_), h, FB_.data());
 }
 
 double VelocityEvaluator::min_gap(const System& s) {

@@ -26,10 +26,11 @@ class VelocityEvaluator {
   void prepare(System& s, bool want_virial);
   // F_B for the prepared configuration (overwrites the stored Brownian force).
   void draw_brownian(const System& s, const RandomStream& noise, double dt);
-  // F_B = sqrt(2 kT) (A W + B W_pair) / h for the Wiener increments W of `interval` (length h),
-  // built from the hydro model's draws, which are linear in the normals:
-  //   brownian_force(stream_j, dt = 1) = sqrt(2 kT) (A xi_j + B beta_j),  W = sum_j c_j xi_j.
-  // One term (a whole base interval) is the fixed-step draw brownian_force(stream_0, h) itself.
+  // F_B = sqrt(2 kT) (A W + B W_pair) / h for the Wiener increments W = sum_j c_j xi_j of
+  // `interval` (length h): one hydro draw brownian_force(stream, h) from the stream standing for
+  // the combination sum_j (c_j / sqrt(h)) xi_j (RandomStream::combined), the model's draw being
+  // linear in its normals. One term (a whole base interval) is the fixed-step draw
+  // brownian_force(stream_0, h) itself, bit for bit.
   void draw_brownian(const System& s, std::uint64_t seed, const BrownianBridge& bridge,
                      const NoiseInterval& interval);
   // Refresh the pair list at the current configuration; smallest node surface gap (a).
@@ -54,8 +55,9 @@ class VelocityEvaluator {
   std::shared_ptr<HydroModel> hydro_;
   std::vector<std::shared_ptr<ForceLaw>> forces_;
   CellNeighbourList& list_;
-  std::vector<double> FP_, FB_, F_, dU_, U_, FB_term_;
+  std::vector<double> FP_, FB_, F_, dU_, U_;
   BrownianBridge::Terms terms_;
+  NormalCombination combination_;  // the bridge's terms as one stream (draw_brownian)
   Eigen::Matrix3d virial_ = Eigen::Matrix3d::Zero();
   std::int64_t total_iterations_ = 0;
 };
