@@ -15,7 +15,9 @@
 // pressure_fld_spheres, pressure_fld_dicolloid02, pressure_fld_dicolloid1 (FLD defaults at dt 2.5e-4, 32
 // runs: the stress observer's Z_particle against the hard-core oracle's equation of state),
 // fused_phi05 (fused dumbbells, phi 0.5, N 1000, FLD at 8e-4, 16 runs) and fused_phi05_lattice_start
-// (the same from the starts of the rule until December 2026: must fail). Keys: n, phi, dt,
+// (the same from the starts of the rule until December 2026: must fail), auto_measured_frame_phi05
+// (homonuclear c/a 0.2, phi 0.5, N 1000, dt: auto at tolerance 3e-2 with the frame at the measured
+// 8e-4) and auto_long_frame_phi05 (the same with a 1.6e-3 frame: must fail). Keys: n, phi, dt,
 // duration, equilibrate, blocks, every, seed, hydro, hydro_params, force_params, drift (midpoint|none),
 // integrator (euler_maruyama|rk3: the paper's RK3 with frozen Brownian forces; fixed dt),
 // oracle_sweeps, oracle_blocks, stress_every, max_overlap, adaptive (0|1), tolerance, reject_at, rejected
@@ -213,6 +215,24 @@ std::map<std::string, Case> cases() {
   fused.bd.start_forgets_compression = false;
   fused.expect_pass = false;
   c["fused_phi05_lattice_start"] = fused;
+  // dt: auto at the paper's densest point (homonuclear c/a 0.2, phi 0.5, N = 1000; docs/time_steps.md,
+  // "Why, measured"): with its frame at the measured step (dt_max 8e-4) tolerance 3e-2 takes that step
+  // and passes; with a frame twice as long a fifth of its time goes into 1.6e-3 steps, whose bias fails.
+  Case frame = with_shape(base, kShapes[1]);
+  frame.scene.count = 1000;
+  frame.scene.phi = 0.5;
+  frame.runs = 16;
+  frame.bd.adaptive = true;
+  frame.bd.tolerance = 3e-2;
+  frame.bd.dt = 8e-4;
+  frame.bd.sample_every = 10;
+  frame.bd.equilibrate = 0.2;
+  frame.bd.duration = 1.0;
+  c["auto_measured_frame_phi05"] = frame;
+  frame.bd.dt = 1.6e-3;
+  frame.bd.sample_every = 5;
+  frame.expect_pass = false;
+  c["auto_long_frame_phi05"] = frame;
   return c;
 }
 
