@@ -70,7 +70,9 @@ ParamSchema run_schema() {
       .or_word("auto");
   s.number("dt_max", 0.0, "time_unit",
            "with dt: auto, the longest step and the frame: observers' `every` and checkpoint_every count "
-           "frames of dt_max, and samples fall on multiples of it; required with dt: auto")
+           "frames of dt_max, and samples fall on multiples of it; steps are its dyadic pieces dt_max/2^k, "
+           "so for Brownian averages make it a step whose bias is known (docs/time_steps.md, \"Why, "
+           "measured\"); required with dt: auto")
       .at_least(0.0);
   s.number("dt_min", 0.0, "time_unit",
            "shortest step: a step that a retry would cut below it stops the run with a checkpoint; "
