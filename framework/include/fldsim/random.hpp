@@ -60,8 +60,8 @@ struct NormalCombination {
 //
 // A stream may instead stand for a NormalCombination of stages (combined()): then normal2() and
 // normals() return the combination's values (still pure functions of the key, normally
-// distributed with variance sum_j coefficient[j]^2); its uniforms and bits() are those of stage
-// 0 of the combination's owner. The core passes such streams to HydroModel::brownian_force.
+// distributed with variance sum_j coefficient[j]^2); its uniforms and bits() stay those of the
+// stream it was made from. The core passes such streams to HydroModel::brownian_force.
 class RandomStream {
  public:
   RandomStream(std::uint64_t seed, RandomPurpose purpose, std::uint64_t step, std::uint32_t stage = 0)
