@@ -85,7 +85,6 @@ class RandomStream {
     other.combination_ = &c;
     return other;
   }
-  const NormalCombination* combination() const { return combination_; }
 
   // Four uniform 32-bit words for (object, block).
   Philox4x32::Counter bits(std::uint64_t object, std::uint32_t block) const {
