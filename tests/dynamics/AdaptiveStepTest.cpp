@@ -14,6 +14,7 @@
 //    must make the thermal drift.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <vector>
@@ -129,6 +130,72 @@ TEST(StepControl, RefineSplitsEveryFrameOnItsOwnPath) {
   }
 }
 
+// The displacement bound (run.displacement) against a model of the mean square node step,
+// m(h) = A h + B h^2 (diffusion plus drift), predicted with exponent p: the steps settle on the
+// longest dyadic piece of the frame with m(h) <= l^2, never a longer one.
+std::vector<double> bounded_steps(double A, double B, double l2, double order, int frames) {
+  StepControlSettings s;
+  s.adaptive = true;
+  s.error_control = false;
+  s.frame = 1.0;
+  s.displacement = std::sqrt(l2);
+  s.displacement_order = order;
+  StepControl c(s);
+  std::vector<double> taken;
+  for (int f = 0; f < frames; ++f) {
+    c.begin_frame(std::uint64_t(f));
+    while (!c.frame_done()) {
+      const double h = c.next_duration();
+      taken.push_back(h);
+      c.accept(0.0, A * h + B * h * h);
+    }
+  }
+  return taken;
+}
+
+void expect_settled(const std::vector<double>& steps, double piece, std::size_t last) {
+  for (std::size_t i = steps.size() - last; i < steps.size(); ++i) EXPECT_EQ(steps[i], piece) << "step " << i;
+  EXPECT_LE(*std::max_element(steps.begin(), steps.end()), piece);
+}
+
+TEST(StepControl, DisplacementBoundTakesTheLongestPieceBelowIt) {
+  // Diffusion (p = 1), m = 6 h, l^2 = 6 x 0.45: h* = 0.45, so 1/4 (the nearest piece would be 1/2).
+  const std::vector<double> d = bounded_steps(6.0, 0.0, 6.0 * 0.45, 1.0, 8);
+  EXPECT_EQ(d.front(), 1.0 / 16.0);  // the first step: frame / 16
+  expect_settled(d, 0.25, 12);
+  // Diffusion with a drift of 5 % of m (p = 1): h + 0.2 h^2 = 0.3 at h* = 0.284, so 1/4.
+  expect_settled(bounded_steps(1.0, 0.2, 0.3, 1.0, 8), 0.25, 12);
+  // A drift alone (kT = 0, p = 2): m = (0.8 h)^2, l = 0.8 x 0.3: h* = 0.3, so 1/4.
+  expect_settled(bounded_steps(0.0, 0.64, 0.64 * 0.09, 2.0, 8), 0.25, 12);
+}
+
+TEST(StepControl, DisplacementBoundAndErrorControlTakeTheShorterAndResume) {
+  StepControlSettings s;
+  s.adaptive = true;
+  s.frame = 1.0;
+  s.displacement = std::sqrt(6.0 * 0.3);  // h* = 0.3: pieces of 1/4
+  StepControl c(s);
+  for (std::uint64_t f = 0; f < 6; ++f) {
+    c.begin_frame(f);
+    while (!c.frame_done()) c.accept(0.01, 6.0 * c.next_duration());  // small errors: h_ grows to 1
+  }
+  EXPECT_GE(c.proposal(), 0.5);  // the error controller would take twice the bound's piece
+  c.begin_frame(6);
+  EXPECT_EQ(c.next_duration(), 0.25);  // the bound decides
+  // Restored from a checkpoint, the next frame is the same.
+  StepControl r(s);
+  r.restore(c.proposal(), c.displacement_bound(), c.displacement_rate());
+  r.begin_frame(6);
+  EXPECT_EQ(r.next_duration(), 0.25);
+  // Errors at the tolerance: the error controller's nearest piece below the bound decides.
+  for (std::uint64_t f = 7; f < 12; ++f) {
+    c.begin_frame(f);
+    while (!c.frame_done()) c.accept(c.next_duration() > 0.07 ? 3.0 : 0.9, 6.0 * c.next_duration());
+  }
+  c.begin_frame(12);
+  EXPECT_LE(c.next_duration(), 0.0625);
+}
+
 // ---------------------------------------------------------------- trapped bodies
 
 // U = k (x - x_centre)^2 / 2: a trap along x only (y and z diffuse freely), so that the error
@@ -147,13 +214,15 @@ class HarmonicTrap : public ForceLaw {
 };
 
 // A hydrodynamic model whose mobility depends on the configuration, as FLD's does near contact:
-// along x, m(r) = 0.1 + 0.9 r^2 / (1 + r^2), r = x - x_centre (1 in the other five directions).
+// along x, m(r) = 0.1 + 0.9 r^2 / (1 + r^2), r = x - x_centre (`other`, 1 unless given, in the
+// other five directions).
 // The SDE dX = m F dt + kT m'(r) dt + sqrt(2 kT m) dW has the Boltzmann distribution of the trap
 // whatever m, provided the thermal drift kT m' is right, and the midpoint scheme makes that drift
 // from the noise: E[m'(r) dW^2] = m' dt.
 class PositionDependentMobility : public HydroModel {
  public:
-  explicit PositionDependentMobility(std::vector<Vec3> centres) : centres_(std::move(centres)) {}
+  explicit PositionDependentMobility(std::vector<Vec3> centres, double other = 1.0)
+      : centres_(std::move(centres)), other_(other) {}
   double pair_range(const System&) const override { return 0.0; }
   bool provides_stresslets() const override { return false; }
   std::vector<std::string> configure(const System& s, const HydroRequest&) override {
@@ -172,20 +241,23 @@ class PositionDependentMobility : public HydroModel {
     for (std::size_t i = 0; i < s.size(); ++i) {
       double xi[6];
       noise.normals(i, xi, 6);
-      for (int c = 0; c < 6; ++c) FB[6 * i + c] = scale * xi[c] / (c == 0 ? std::sqrt(m_[i]) : 1.0);
+      for (int c = 0; c < 6; ++c) FB[6 * i + c] = scale * xi[c] / std::sqrt(c == 0 ? m_[i] : other_);
     }
   }
   void solve(const System& s, const double* F, double* dU) override {
     for (std::size_t i = 0; i < s.size(); ++i)
-      for (int c = 0; c < 6; ++c) dU[6 * i + c] = (c == 0 ? m_[i] : 1.0) * F[6 * i + c];
+      for (int c = 0; c < 6; ++c) dU[6 * i + c] = (c == 0 ? m_[i] : other_) * F[6 * i + c];
   }
 
  private:
   std::vector<Vec3> centres_;
+  double other_;
   std::vector<double> m_;
 };
 
-enum class Mobility { Constant, PositionDependent };
+// PositionDependentAlongX: the same with mobility 0.01 across x, so that x's noise dominates a
+// step's displacement (the displacement bound's test).
+enum class Mobility { Constant, PositionDependent, PositionDependentAlongX };
 
 struct TrapResult {
   MeanWithError variance;  // <(x - x_centre)^2> k / kT: 1 exactly
@@ -206,9 +278,11 @@ TrapResult run_trap(TimeIntegrator& integrator, Mobility mobility, const StepCon
   const std::vector<Vec3> centres{Vec3(20.0, 20.0, 20.0)};
   Scene scene(shape, centres.size(), 40.0, ph);
   scene.system->positions() = centres;
-  std::shared_ptr<HydroModel> hydro = mobility == Mobility::Constant
-                                          ? make<HydroModel>("hydro", "free_draining")
-                                          : std::make_shared<PositionDependentMobility>(centres);
+  std::shared_ptr<HydroModel> hydro =
+      mobility == Mobility::Constant
+          ? make<HydroModel>("hydro", "free_draining")
+          : std::make_shared<PositionDependentMobility>(
+                centres, mobility == Mobility::PositionDependentAlongX ? 0.01 : 1.0);
   scene.finish(hydro, {std::make_shared<HarmonicTrap>(k, centres)}, HydroRequest{true, false, false});
   RunInfo info;
   info.dt = control.frame;
@@ -294,6 +368,79 @@ TEST(AdaptiveSteps, MultiplicativeNoiseIsExactWithRareRejectionsOnly) {
   const TrapResult redraw = trapped_body(Mobility::PositionDependent, RejectedNoise::Redraw, 1.0, 3000);
   report("position-dependent mobility, redraw, reject_at 1", redraw);
   EXPECT_GT(std::fabs(redraw.variance.mean - 1.0), 3.0 * redraw.variance.se);
+}
+
+// The displacement bound alone (run.displacement without run.tolerance): each step is sized from
+// the past steps' displacement, here of a single body whose mobility along x (0.1 to 1) dominates
+// it, so the step follows the body's position (m ~ 2 m(r) h: 10x between the trap's centre and its
+// flanks) and the past noise. Chosen from the past only, the steps select no path: the trap's
+// variance stays exact. l = 0.17 a: steps of about l^2 / (2 m) = 0.03 a^2/D0 at m = 0.5. Sizing
+// each step by its own noise instead (rejecting an attempt whose displacement exceeds l, retried
+// on the bridge, 24 % of attempts) was run once against it: <x^2> 0.882 +- 0.023 (z -5.1), failed.
+TEST(AdaptiveSteps, DisplacementBoundChosenFromThePastIsExact) {
+  EulerMaruyama em(2025, true, DriftScheme::Midpoint, 1);
+  StepControlSettings control;
+  control.adaptive = true;
+  control.error_control = false;
+  control.frame = 0.1;
+  control.displacement = 0.17;
+  const TrapResult r = run_trap(em, Mobility::PositionDependentAlongX, control, 3000);
+  report("position-dependent mobility along x, displacement bound 0.17 a", r);
+  EXPECT_EQ(r.rejected_share, 0.0);
+  EXPECT_GT(double(r.steps), 3.0 * 20 * 3000);  // several steps per frame: the bound acts
+  EXPECT_NEAR(r.variance.mean, 1.0, 3.0 * r.variance.se);
+}
+
+// What the bound measures: free-draining spheres without forces under shear (gammadot = 10 D0/a^2)
+// move relative to the imposed flow by sqrt(2 D0 h) per coordinate (kT = 1, D0 = 1 in internal
+// units), so the mean square node step is exactly 6 D0 h + (2/3) (gammadot h a)^2, the second term
+// the flow's displacement of a touching neighbour (TimeIntegrator::mean_square_node_step); the
+// affine displacement gammadot y h itself (up to 1.25 a per step here) must not count. The steps
+// settle on the longest piece with m(h) <= l^2 (l^2 = 6 x 0.35 frame: a quarter frame; m of 64
+// nodes scatters by 10 % from step to step, 4 % averaged, so h* is 7 SD from either piece).
+// Counting the affine displacement (U instead of U - U_inf) was run once against it: fails.
+TEST(AdaptiveSteps, DisplacementBoundMeasuresTheStepRelativeToTheFlow) {
+  Physics ph;
+  ph.kT = 1.0;
+  ph.shear_rate = 10.0;
+  auto shape = make<Shape>("shape", "sphere");
+  const std::size_t n = 64;
+  const double edge = 20.0;
+  Scene scene(shape, n, edge, ph);
+  for (std::size_t i = 0; i < n; ++i)
+    scene.system->positions()[i] =
+        Vec3(2.5 + 5.0 * double(i % 4), 2.5 + 5.0 * double((i / 4) % 4), 2.5 + 5.0 * double(i / 16));
+  scene.finish(make<HydroModel>("hydro", "free_draining"), {}, HydroRequest{true, false, false});
+  const double frame = 0.01;
+  RunInfo info;
+  info.dt = frame;
+  StepControlSettings control;
+  control.adaptive = true;
+  control.error_control = false;
+  control.frame = frame;
+  control.displacement = std::sqrt(6.0 * 0.35 * frame);
+  EulerMaruyama em(77, true, DriftScheme::Midpoint, n);
+  std::vector<std::shared_ptr<Observer>> none;
+  StepGuard guard;
+  guard.max_overlap = INFINITY;  // an ideal gas
+  StepLoop loop(*scene.system, em, *scene.evaluator, scene.list, none, info, true, true, control, guard);
+  test::FakeSink sink;
+  for (int f = 0; f < 10; ++f) loop.step(sink);
+  const auto& st = loop.statistics();
+  const auto sum = [&] { return std::pow(st.rms_node_step(), 2) * double(st.accepted_steps()); };
+  const double sum0 = sum();
+  const std::int64_t steps0 = st.accepted_steps();
+  const int frames = 100;
+  for (int f = 0; f < frames; ++f) loop.step(sink);
+  EXPECT_EQ(st.accepted_steps() - steps0, 4 * frames);  // every step a quarter frame
+  EXPECT_EQ(st.max_dt(), 0.25 * frame);
+  const double h = 0.25 * frame;
+  const double ms = (sum() - sum0) / double(st.accepted_steps() - steps0);
+  const double exact = 6.0 * h + (2.0 / 3.0) * std::pow(ph.shear_rate * h, 2);
+  // |step|^2 = 2 h chi^2_3 per node: mean 6 h, standard deviation sqrt(24) h; n x 400 of them.
+  const double se = std::sqrt(24.0) * h / std::sqrt(double(n) * 4.0 * frames);
+  std::printf("mean square node step %.6g against %.6g (SE %.2g)\n", ms, exact, se);
+  EXPECT_NEAR(ms, exact, 3.0 * se);
 }
 
 // The paper's integrator with Brownian motion: RK3 with F_B drawn at x and frozen over its three

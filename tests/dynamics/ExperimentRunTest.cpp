@@ -246,7 +246,8 @@ namespace {
 // the statistics) is in the checkpoint, and a frame's end leaves no bridged noise pending, so a
 // resumed run is bit-identical; the thread count changes nothing. Free-draining spheres with
 // the paper's repulsion: steps shrink at every contact, so there are many step lengths.
-std::string adaptive(const std::string& output, double duration, const std::string& threads) {
+std::string adaptive(const std::string& output, double duration, const std::string& threads,
+                     const std::string& rule = "tolerance: 0.002") {
   std::ostringstream y;
   y << "system:\n"
        "  shape: {plugin: sphere}\n"
@@ -256,8 +257,8 @@ std::string adaptive(const std::string& output, double duration, const std::stri
        "hydro: {plugin: free_draining}\n"
        "forces:\n"
        "  - {plugin: repulsion}\n"
-       "run: {dt: auto, dt_max: 0.001, tolerance: 0.002, duration: "
-    << duration << ", seed: 9, threads: " << threads
+       "run: {dt: auto, dt_max: 0.001, "
+    << rule << ", duration: " << duration << ", seed: 9, threads: " << threads
     << "}\n"
        "observers:\n  - {plugin: pair_distribution, every: 5, range: 3}\n"
        "output: "
@@ -265,12 +266,12 @@ std::string adaptive(const std::string& output, double duration, const std::stri
   return y.str();
 }
 
-TEST(ExperimentRun, AdaptiveRunResumesBitIdenticallyOnAnyThreadCount) {
-  const fs::path d = scratch("adaptive");
-  write(d / "full.yaml", adaptive((d / "full.h5").string(), 0.03, "1"));
-  write(d / "two.yaml", adaptive((d / "two.h5").string(), 0.03, "2"));
-  write(d / "half.yaml", adaptive((d / "half.h5").string(), 0.015, "1"));
-  write(d / "rest.yaml", adaptive((d / "rest.h5").string(), 0.03, "1"));
+void expect_adaptive_resume_bit_identical(const std::string& name, const std::string& rule) {
+  const fs::path d = scratch(name);
+  write(d / "full.yaml", adaptive((d / "full.h5").string(), 0.03, "1", rule));
+  write(d / "two.yaml", adaptive((d / "two.h5").string(), 0.03, "2", rule));
+  write(d / "half.yaml", adaptive((d / "half.h5").string(), 0.015, "1", rule));
+  write(d / "rest.yaml", adaptive((d / "rest.h5").string(), 0.03, "1", rule));
   const Command full = run("run " + (d / "full.yaml").string());
   ASSERT_EQ(full.code, 0) << full.output;
   EXPECT_NE(full.output.find("steps: "), std::string::npos) << full.output;
@@ -293,6 +294,17 @@ TEST(ExperimentRun, AdaptiveRunResumesBitIdenticallyOnAnyThreadCount) {
   const auto& steps = a.blobs.at("run.steps");
   const double accepted = steps.at(3);  // after the proposal, overlap frames, deepest overlap
   EXPECT_GT(accepted, double(a.step)) << "no step was shorter than dt_max";
+}
+
+TEST(ExperimentRun, AdaptiveRunResumesBitIdenticallyOnAnyThreadCount) {
+  expect_adaptive_resume_bit_identical("adaptive", "tolerance: 0.002");
+}
+
+// The displacement bound's state (the bound and its averaged rate) is in the checkpoint too;
+// alone (no tolerance) and with the error controller.
+TEST(ExperimentRun, DisplacementBoundRunResumesBitIdentically) {
+  expect_adaptive_resume_bit_identical("bound", "displacement: 0.02");
+  expect_adaptive_resume_bit_identical("both", "displacement: 0.03, tolerance: 0.004");
 }
 
 // A run that cannot go on stops with one line naming the time and the cause, and a checkpoint

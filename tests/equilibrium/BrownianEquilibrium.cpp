@@ -99,6 +99,8 @@ BrownianEquilibrium run_brownian(const EquilibriumScene& scene, const BrownianOp
   control.tolerance = opt.tolerance;
   control.reject_at = opt.reject_at;
   control.order = integrator.error_order();
+  control.displacement = opt.displacement;
+  control.error_control = opt.error_control;
   StepGuard guard;
   guard.max_overlap = opt.max_overlap;
   StepLoop loop(s, integrator, *sc.evaluator, sc.list, observers, info, true,
@@ -143,6 +145,7 @@ BrownianEquilibrium run_brownian(const EquilibriumScene& scene, const BrownianOp
   out.steps = s.step();
   out.accepted = loop.statistics().accepted_steps();
   out.rejected = loop.statistics().rejected_attempts();
+  out.node_step_sum = std::pow(loop.statistics().rms_node_step(), 2) * double(out.accepted);
   for (auto& o : observers) o->finish(info, sink);
   if (opt.stress_every > 0) {
     const auto& z = sink.scalar("results/stress/Z");
@@ -176,6 +179,7 @@ BrownianEquilibrium run_brownian_replicas(const EquilibriumScene& scene, Brownia
     out.steps += r.steps;
     out.accepted += r.accepted;
     out.rejected += r.rejected;
+    out.node_step_sum += r.node_step_sum;
     out.min_gap = std::min(out.min_gap, r.min_gap);
     out.seconds += r.seconds;
   }

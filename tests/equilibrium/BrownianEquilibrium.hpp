@@ -46,6 +46,10 @@ struct BrownianOptions {
   bool adaptive = false;
   double tolerance = 1e-3;  // a
   double reject_at = 10.0;
+  // run.displacement (a; 0 = none); with error_control false it is the only rule (run.displacement
+  // without run.tolerance).
+  double displacement = 0.0;
+  bool error_control = true;
   RejectedNoise rejected = RejectedNoise::Bridge;  // Redraw: the broken variant, for tests
   // The step loop's stability guard (run.max_overlap): a step leaving a deeper node overlap is
   // rejected and retried shorter, which would bias a potential whose equilibrium has such overlaps.
@@ -71,10 +75,11 @@ struct BrownianEquilibrium {
   std::vector<double> Z_particle_blocks;         // replicas: each run's Z_particle
   std::vector<double> Z_contact_blocks;          // with contact_term: per block (replicas: per run)
   oracle::MeanError Z_contact;
-  std::int64_t steps = 0;     // frames (= steps at a fixed dt)
-  std::int64_t accepted = 0;  // time steps taken
-  std::int64_t rejected = 0;  // step attempts the loop rejected (0 for an undisturbed fixed-step run)
-  double min_gap = 0.0;       // smallest node surface gap seen at the samples
+  std::int64_t steps = 0;      // frames (= steps at a fixed dt)
+  std::int64_t accepted = 0;   // time steps taken
+  std::int64_t rejected = 0;   // step attempts the loop rejected (0 for an undisturbed fixed-step run)
+  double node_step_sum = 0.0;  // sum over accepted steps of their mean square node step, a^2
+  double min_gap = 0.0;        // smallest node surface gap seen at the samples
   double seconds = 0.0;
 };
 

@@ -20,7 +20,8 @@
 // 8e-4) and auto_long_frame_phi05 (the same with a 1.6e-3 frame: must fail). Keys: n, phi, dt,
 // duration, equilibrate, blocks, every, seed, hydro, hydro_params, force_params, drift (midpoint|none),
 // integrator (euler_maruyama|rk3: the paper's RK3 with frozen Brownian forces; fixed dt),
-// oracle_sweeps, oracle_blocks, stress_every, max_overlap, adaptive (0|1), tolerance, reject_at, rejected
+// oracle_sweeps, oracle_blocks, stress_every, max_overlap, adaptive (0|1), tolerance, reject_at,
+// displacement (run.displacement, a), error_control (0|1: 0 = run.displacement alone), rejected
 // (bridge|redraw), start_rule (both|lattice: the Monte Carlo start's clocks), hard_core (0|1: the oracle's),
 // contact_term (0|1: the hard core's contact term of the run's own configurations against the oracle's), runs
 // (R > 0: R independent runs of equilibrate + duration, seeds seed .. seed + R - 1, one block each, as the CI
@@ -294,6 +295,10 @@ void apply(Case& c, const std::string& kv) {
     c.bd.tolerance = std::stod(v);
   else if (k == "reject_at")
     c.bd.reject_at = std::stod(v);
+  else if (k == "displacement")
+    c.bd.displacement = std::stod(v);
+  else if (k == "error_control")
+    c.bd.error_control = v == "1";
   else if (k == "contact_term")
     c.bd.contact_term = v == "1";
   else if (k == "start_rule") {
@@ -321,7 +326,15 @@ void ratio_rows(const oracle::RadialHistogram& bd, const oracle::RadialHistogram
 
 bool run_case(const std::string& name, const Case& c) {
   std::cout << "\n=== " << name << ": " << c.scene.describe() << "; dt "
-            << (c.bd.adaptive ? "auto (tolerance " + std::to_string(c.bd.tolerance) + " a), frame " : "")
+            << (c.bd.adaptive
+                    ? "auto (" +
+                          (c.bd.error_control ? "tolerance " + std::to_string(c.bd.tolerance) + " a" : "") +
+                          (c.bd.error_control && c.bd.displacement > 0 ? ", " : "") +
+                          (c.bd.displacement > 0
+                               ? "rms node step <= " + std::to_string(c.bd.displacement) + " a"
+                               : "") +
+                          "), frame "
+                    : "")
             << c.bd.dt << ", "
             << (c.bd.rk3                          ? "rk3, Brownian force frozen over its stages"
                 : c.bd.drift == DriftScheme::None ? "drift none"
@@ -337,7 +350,8 @@ bool run_case(const std::string& name, const Case& c) {
   const auto bd = c.runs > 0 ? run_brownian_replicas(c.scene, c.bd, c.runs) : run_brownian(c.scene, c.bd);
   if (c.runs > 0) std::cout << "independent runs as blocks: " << c.runs << " from seed " << c.bd.seed << "\n";
   std::cout << "brownian: " << bd.steps << " frames, " << bd.accepted << " steps (" << bd.rejected
-            << " attempts rejected), " << bd.seconds << " s, min gap " << bd.min_gap << " a\n";
+            << " attempts rejected), " << bd.seconds << " s, min gap " << bd.min_gap << " a, rms node step "
+            << (bd.accepted ? std::sqrt(bd.node_step_sum / double(bd.accepted)) : 0.0) << " a\n";
   bool ok = true;
   const auto z = oracle::compare_means(bd.Z, mc.Z);
   std::printf("Z: dynamics %.4f +- %.4f", bd.Z.mean, bd.Z.se);

@@ -308,7 +308,17 @@ TEST_F(Corpus, CoreKeys) {
                                r["run"]["dt"] = "auto";
                                r["run"]["dt_max"] = 0.01;
                              }),
-                             {at_key("run.integrator") + "rk3 with Brownian motion runs fixed steps"}));
+                             {at_key("run.integrator") + "rk3 with Brownian motion has no error estimate"}));
+  cases.push_back(check_case("run.displacement with a fixed step",
+                             edited([](YAML::Node& r) { r["run"]["displacement"] = 0.03; }),
+                             {at_key("run.displacement") + "only with dt: auto"}));
+  cases.push_back(check_case("reject_at with the displacement bound alone", edited([](YAML::Node& r) {
+                               r["run"]["dt"] = "auto";
+                               r["run"]["dt_max"] = 0.01;
+                               r["run"]["displacement"] = 0.03;
+                               r["run"]["reject_at"] = 5;
+                             }),
+                             {at_key("run.reject_at") + "only with run.tolerance"}));
   cases.push_back(
       check_case("rk3 with Brownian motion and drift: none", edited([](YAML::Node& r) {
                    r["run"]["integrator"] = "rk3";

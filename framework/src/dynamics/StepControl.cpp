@@ -28,13 +28,28 @@ StepControl::StepControl(const StepControlSettings& settings) : settings_(settin
     throw Error("step control: refine must be in 0.." + std::to_string(NoiseInterval::kMaxDepth));
   if (settings_.dt_min <= 0.0) settings_.dt_min = std::ldexp(settings_.frame, -24);
   settings_.dt_min = std::min(settings_.dt_min, std::ldexp(settings_.frame, -settings_.refine));
+  if (settings_.displacement < 0.0 || !std::isfinite(settings_.displacement))
+    throw Error("step control: the displacement bound must be >= 0 and finite");
+  if (settings_.adaptive && !settings_.error_control && settings_.displacement == 0.0)
+    throw Error("step control: adaptive steps without error control need a displacement bound");
+  if (!(settings_.displacement_order > 0.0)) throw Error("step control: displacement_order must be > 0");
   h_ = settings_.frame;
-  if (settings_.adaptive) h_ = settings_.first_step > 0.0 ? settings_.first_step : settings_.frame / 16.0;
+  hd_ = INFINITY;
+  if (settings_.adaptive) {
+    const double first = settings_.first_step > 0.0 ? settings_.first_step : settings_.frame / 16.0;
+    if (settings_.error_control) h_ = first;
+    if (bounded()) hd_ = std::clamp(first, settings_.dt_min, settings_.frame);
+  }
   h_ = std::clamp(h_, settings_.dt_min, settings_.frame);
 }
 
-void StepControl::restore(double proposal) {
-  if (settings_.adaptive) h_ = std::clamp(proposal, settings_.dt_min, settings_.frame);
+void StepControl::restore(double proposal, double displacement_bound, double displacement_rate) {
+  if (!settings_.adaptive) return;
+  h_ = std::clamp(proposal, settings_.dt_min, settings_.frame);
+  if (bounded() && displacement_bound > 0.0) {
+    hd_ = std::clamp(displacement_bound, settings_.dt_min, settings_.frame);
+    rate_ = std::max(displacement_rate, 0.0);
+  }
 }
 
 void StepControl::begin_frame(std::uint64_t frame_index) {
@@ -63,6 +78,7 @@ void StepControl::settle_depth(int minimum_depth, bool shorter) {
     const double levels = std::log2(H / h_);
     want = shorter ? int(std::ceil(levels - 1e-9)) : int(std::lround(levels));
   }
+  if (bounded() && hd_ < H) want = std::max(want, int(std::ceil(std::log2(H / hd_) - 1e-9)));  // at most hd
   const int aligned =
       position_ == 0 ? 0 : NoiseInterval::kMaxDepth - std::countr_zero(position_);  // coarsest boundary
   const int floor = std::max({aligned, minimum_depth, settings_.refine});
@@ -72,14 +88,29 @@ void StepControl::settle_depth(int minimum_depth, bool shorter) {
   interval_.index = position_ >> (NoiseInterval::kMaxDepth - depth);
 }
 
-void StepControl::accept(double error_ratio) {
+void StepControl::accept(double error_ratio, double mean_square_step) {
   const double taken = interval_.duration();
   if (settings_.adaptive) {
-    const double f = factor(error_ratio);
+    // Without error control the proposal only remembers the guard's rejections and grows back.
+    const double f = settings_.error_control ? factor(error_ratio) : settings_.grow_max;
     double h = taken * f;
     // A piece cut short by the dyadic grid or the frame does not lower a good proposal.
     if (taken < h_ && f >= 1.0) h = std::max(h, h_);
     h_ = std::clamp(h, settings_.dt_min, settings_.frame);
+    if (bounded()) {
+      const double p = settings_.displacement_order;
+      const double l2 = settings_.displacement * settings_.displacement;
+      if (mean_square_step > 0.0 && std::isfinite(mean_square_step)) {
+        const double rate = mean_square_step / std::pow(taken, p);
+        rate_ = rate_ > 0.0 ? rate_ + 0.25 * (rate - rate_) : rate;
+      }
+      const double h = rate_ > 0.0 ? std::pow(l2 / rate_, 1.0 / p) : taken * settings_.grow_max;
+      // Growth relative to the longer of the piece and the bound, so that a piece cut short by the
+      // grid or a retry does not drag the bound down.
+      const double reach = std::max(taken, std::min(hd_, settings_.frame));
+      hd_ = std::clamp(h, taken * settings_.shrink_min, reach * settings_.grow_max);
+      hd_ = std::clamp(hd_, settings_.dt_min, settings_.frame);
+    }
   }
   position_ += kWhole >> interval_.depth;
   interval_.attempt++;

@@ -23,6 +23,25 @@
 //    with a configuration-dependent mobility (FLD) it biases the equilibrium in proportion to
 //    the share of rejected attempts (tests/dynamics/AdaptiveStepTest.cpp: a 1-D trap with a
 //    position-dependent mobility, reject_at = 1: <x^2> 15 % low at 20 % rejections; 10: exact).
+//  - Displacement bound (adaptive, run.displacement = l): the step is also at most the largest
+//    dyadic piece whose root mean square node displacement relative to the imposed flow stays
+//    below l, predicted from the last accepted step's mean square m: hd = h_taken (l^2 / m)^(1/p),
+//    p = 1 with Brownian motion (m = A h + B h^2, diffusion plus drift: exact for diffusion, and
+//    the iteration l^2 / (A + B h) converges to m(h*) = l^2 with the contraction B h* / (A + B h*),
+//    the drift's share of m; from a shorter step it overshoots h* by at most that share), p = 2
+//    without (a drift: exact). p = 2 with Brownian motion would never overshoot, but it stalls
+//    up to 4x below h* (the geometric mean of the step and h* rounds down to the same piece).
+//    m / h^p is averaged over the last steps (weight 1/4 for the newest): with N bodies m scatters
+//    by about sqrt(2 / (3 N_nodes)) from step to step, which would otherwise flip the step between
+//    two pieces wherever h* lies within that scatter of a piece's length.
+//    This is a bound on the weak (averages') error of Brownian FLD, not on the path: the bias of
+//    the equilibrium structure follows the step's displacement against the lubrication taper's
+//    width, and runs whose steps moved nodes by 0.026-0.031 a rms passed the hard-core oracle at
+//    phi 0.3 and 0.5 (spheres, c/a 0.2, c/a 1) where 0.043-0.053 a failed (docs/time_steps.md,
+//    "The displacement bound"). The bound is chosen from the past only (the last accepted step),
+//    never from the noise of the step it sizes, so it selects no path. Rounded down, not to the
+//    nearest piece: it is a bound. Without run.tolerance (error_control false) it is the only
+//    rule, and only the guard rejects.
 #pragma once
 
 #include <cstdint>
@@ -33,12 +52,15 @@ namespace fldsim {
 
 struct StepControlSettings {
   bool adaptive = false;
-  double frame = 0.0;       // run.dt, or run.dt_max for `dt: auto` (internal time units)
-  double dt_min = 0.0;      // no step below this (0 = frame / 2^24); a run that needs one stops
-  int refine = 0;           // every step at most frame / 2^refine
-  double tolerance = 1e-3;  // local error target, a (adaptive only): the controller aims at it
-  double reject_at = 10.0;  // an attempt whose estimate exceeds reject_at * tolerance is rejected
-  double order = 1.5;       // the error estimate scales as h^order: 1.5 Euler-Maruyama/midpoint, 3 RK3
+  double frame = 0.0;               // run.dt, or run.dt_max for `dt: auto` (internal time units)
+  double dt_min = 0.0;              // no step below this (0 = frame / 2^24); a run that needs one stops
+  int refine = 0;                   // every step at most frame / 2^refine
+  double tolerance = 1e-3;          // local error target, a (adaptive only): the controller aims at it
+  bool error_control = true;        // adaptive: the embedded estimate's controller acts (run.tolerance)
+  double displacement = 0.0;        // adaptive: bound on the rms node displacement per step, a (0: none)
+  double displacement_order = 1.0;  // p of the prediction: 1 with Brownian motion, 2 without
+  double reject_at = 10.0;          // an attempt whose estimate exceeds reject_at * tolerance is rejected
+  double order = 1.5;  // the error estimate scales as h^order: 1.5 Euler-Maruyama/midpoint, 3 RK3
   double safety = 0.9, grow_max = 2.0, shrink_min = 0.2;
   double first_step = 0.0;  // adaptive: the first proposal (0 = frame / 16)
 };
@@ -59,23 +81,31 @@ class StepControl {
   bool next_ends_frame() const { return position_ + (kWhole >> interval_.depth) == kWhole; }
   bool frame_done() const { return done_; }
 
-  // error_ratio: estimate / tolerance (ignored in fixed-step mode).
-  void accept(double error_ratio);
+  // error_ratio: estimate / tolerance (ignored in fixed-step mode and without error control);
+  // mean_square_step: mean over nodes of the squared displacement of the step relative to the
+  // imposed flow, a^2 (TimeIntegrator::mean_square_node_step; used by the displacement bound).
+  void accept(double error_ratio, double mean_square_step = 0.0);
   // Returns false when the retry would be shorter than dt_min (the run cannot go on).
   bool reject(Rejection why, double error_ratio);
 
   const StepControlSettings& settings() const { return settings_; }
-  // The adaptive proposal carried from frame to frame (the checkpoint keeps it).
+  // The adaptive proposal, the displacement bound (infinite without one) and its averaged rate
+  // m / h^p (0 before the first step), carried from frame to frame (the checkpoint keeps them).
   double proposal() const { return h_; }
-  void restore(double proposal);
+  double displacement_bound() const { return hd_; }
+  double displacement_rate() const { return rate_; }
+  void restore(double proposal, double displacement_bound = 0.0, double displacement_rate = 0.0);
 
  private:
   static constexpr std::uint64_t kWhole = std::uint64_t(1) << NoiseInterval::kMaxDepth;
+  bool bounded() const { return settings_.adaptive && settings_.displacement > 0.0; }
   void settle_depth(int minimum_depth, bool shorter);
   double factor(double error_ratio) const;
 
   StepControlSettings settings_;
-  double h_ = 0.0;  // proposal (fixed step: the frame)
+  double h_ = 0.0;     // proposal (fixed step: the frame)
+  double hd_ = 0.0;    // displacement bound on the step (infinite when there is none)
+  double rate_ = 0.0;  // m / h^p averaged over the last steps (0: no step yet)
   bool done_ = true;
   std::uint64_t position_ = 0;  // in the frame, in units of frame / 2^kMaxDepth
   NoiseInterval interval_;

@@ -8,7 +8,11 @@
 
 namespace fldsim {
 
-void StepStatistics::accepted(double dt, double min_gap, double time_at_end) {
+void StepStatistics::accepted(double dt, double min_gap, double time_at_end, double mean_square_step) {
+  if (std::isfinite(mean_square_step)) {
+    node_step_sum_ += mean_square_step;
+    ++node_steps_;
+  }
   if (accepted_ == 0 || dt < min_dt_) min_dt_ = dt;
   if (accepted_ == 0 || dt > max_dt_) max_dt_ = dt;
   ++accepted_;
@@ -41,6 +45,10 @@ double StepStatistics::dt_quantile(double q) const {
   return max_dt_;
 }
 
+double StepStatistics::rms_node_step() const {
+  return node_steps_ ? std::sqrt(node_step_sum_ / double(node_steps_)) : 0.0;
+}
+
 std::string StepStatistics::text(double time_scale, const std::string& unit) const {
   std::ostringstream s;
   s.precision(3);
@@ -60,6 +68,7 @@ std::string StepStatistics::text(double time_scale, const std::string& unit) con
   }
   if (accepted_ > 0)
     s << "; smallest gap " << min_gap_ << " a at t = " << min_gap_time_ / time_scale << " " << unit;
+  if (node_steps_ > 0) s << "; rms node step " << rms_node_step() << " a";
   return s.str();
 }
 
@@ -78,6 +87,10 @@ void StepStatistics::write(ResultSink& sink, double time_scale, const std::strin
   for (const auto& [name, q] : {std::pair{"dt_p05", 0.05}, {"dt_p50", 0.5}, {"dt_p95", 0.95}})
     sink.write_scalar(std::string("/results/steps/") + name, dt_quantile(q) / time_scale, nan, unit,
                       "quantile of the accepted steps (histogram bin centre, 8 bins per decade)");
+  if (node_steps_ > 0)
+    sink.write_scalar("/results/steps/rms_node_step", rms_node_step(), nan, "a",
+                      "root mean square over steps and nodes of a step's node displacement relative to the "
+                      "imposed flow (what run.displacement bounds)");
   if (accepted_ > 0)
     sink.write_scalar("/results/steps/min_gap", min_gap_, nan, "a",
                       "smallest node surface gap at the end of an accepted step (negative: overlap)");
@@ -96,13 +109,16 @@ std::vector<double> StepStatistics::save() const {
   std::vector<double> v{double(accepted_), sum_dt_, min_dt_, max_dt_, min_gap_, min_gap_time_};
   for (auto r : rejected_) v.push_back(double(r));
   for (auto h : histogram_) v.push_back(double(h));
+  v.push_back(node_step_sum_);
+  v.push_back(double(node_steps_));
   return v;
 }
 
 void StepStatistics::restore(const std::vector<double>& v) {
-  if (v.size() != 6 + kRejectionKinds + kBins)
+  if (v.size() != kSavedValues && v.size() != kSavedValuesBefore)
     throw Error("step statistics in the checkpoint have " + std::to_string(v.size()) + " values, expected " +
-                std::to_string(6 + kRejectionKinds + kBins));
+                std::to_string(kSavedValues) + " (or " + std::to_string(kSavedValuesBefore) +
+                " from an earlier build)");
   accepted_ = std::int64_t(v[0]);
   sum_dt_ = v[1];
   min_dt_ = v[2];
@@ -112,6 +128,8 @@ void StepStatistics::restore(const std::vector<double>& v) {
   for (int r = 0; r < kRejectionKinds; ++r) rejected_[std::size_t(r)] = std::int64_t(v[std::size_t(6 + r)]);
   for (int b = 0; b < kBins; ++b)
     histogram_[std::size_t(b)] = std::int64_t(v[std::size_t(6 + kRejectionKinds + b)]);
+  node_step_sum_ = v.size() == kSavedValues ? v[kSavedValues - 2] : 0.0;
+  node_steps_ = v.size() == kSavedValues ? std::int64_t(v[kSavedValues - 1]) : 0;
 }
 
 }  // namespace fldsim

@@ -1,7 +1,8 @@
 // What the steps of a run were: accepted steps, rejected attempts by cause, the distribution of
 // the accepted step lengths (log-spaced histogram), and the smallest node gap seen at the end of
-// an accepted step. Kept across --resume (save/restore), written to the log, to /results/steps
-// in the result file and so to `fldsim summary`.
+// an accepted step, and the root mean square node displacement per step relative to the imposed
+// flow (what run.displacement bounds; docs/time_steps.md). Kept across --resume (save/restore), written to
+// the log, to /results/steps in the result file and so to `fldsim summary`.
 #pragma once
 
 #include <array>
@@ -20,7 +21,8 @@ class StepStatistics {
   static constexpr int kLowestDecade = -14;  // internal time units
   static constexpr int kBins = 16 * kBinsPerDecade;
 
-  void accepted(double dt, double min_gap, double time_at_end);
+  // mean_square_step: TimeIntegrator::mean_square_node_step of the step, a^2.
+  void accepted(double dt, double min_gap, double time_at_end, double mean_square_step);
   void rejected(Rejection why) { ++rejected_[std::size_t(why)]; }
 
   std::int64_t accepted_steps() const { return accepted_; }
@@ -33,12 +35,17 @@ class StepStatistics {
   double max_dt() const { return max_dt_; }
   // q-quantile of the accepted step lengths, from the histogram (bin centre, geometric).
   double dt_quantile(double q) const;
+  // sqrt of the mean over steps of the mean square node step, a (0 before any step; a checkpoint
+  // of an earlier build leaves the steps before it out).
+  double rms_node_step() const;
 
   // One line for the log; times divided by time_scale and shown in `unit`.
   std::string text(double time_scale, const std::string& unit) const;
   // /results/steps/...: counts, dt statistics (in the run's time unit) and the smallest gap.
   void write(ResultSink& sink, double time_scale, const std::string& unit) const;
 
+  static constexpr std::size_t kSavedValues = 8 + kRejectionKinds + kBins;
+  static constexpr std::size_t kSavedValuesBefore = 6 + kRejectionKinds + kBins;  // no node steps
   std::vector<double> save() const;
   void restore(const std::vector<double>& state);  // throws fldsim::Error on a wrong size
 
@@ -48,6 +55,8 @@ class StepStatistics {
   std::array<std::int64_t, kBins> histogram_{};
   double sum_dt_ = 0.0, min_dt_ = 0.0, max_dt_ = 0.0;
   double min_gap_ = 1e300, min_gap_time_ = 0.0;
+  double node_step_sum_ = 0.0;  // sum over steps of the mean square node step, a^2
+  std::int64_t node_steps_ = 0;
 };
 
 }  // namespace fldsim

@@ -54,6 +54,21 @@ double TimeIntegrator::largest_error(const System& s, const double* a, const dou
   return h * std::sqrt(worst);
 }
 
+double TimeIntegrator::mean_square_node_step(const System& s) const {
+  const auto& nodes = s.shape().nodes();
+  double sum = 0.0, flow = 0.0;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const Vec3 dv(dU_[6 * i], dU_[6 * i + 1], dU_[6 * i + 2]);
+    const Vec3 dw(dU_[6 * i + 3], dU_[6 * i + 4], dU_[6 * i + 5]);
+    for (const Node& n : nodes) sum += (dv + dw.cross(s.orientations()[i] * n.position)).squaredNorm();
+  }
+  for (const Node& n : nodes) flow += n.radius * n.radius;
+  const double gammadot = s.physics().shear_rate;
+  const std::size_t count = s.size() * nodes.size();
+  if (count == 0) return 0.0;
+  return dt_ * dt_ * (sum / double(count) + (2.0 / 3.0) * gammadot * gammadot * flow / double(nodes.size()));
+}
+
 void TimeIntegrator::accept(System& s) {
   record_displacement(s, U_.data(), dU_.data(), dt_);
   wrap_into_box(s);

@@ -71,6 +71,13 @@ class TimeIntegrator {
   // Velocity actually used for the step (6N total / relative), for observers.
   const double* step_velocity() const { return U_.data(); }
   const double* step_relative_velocity() const { return dU_.data(); }
+  // Mean over nodes of |dt (dv + dw x r)|^2 + (2/3) (gammadot dt a_node)^2 for the last attempt,
+  // a^2: each node's displacement relative to the imposed flow at its body's centre (dv, dw: the
+  // velocity relative to U_inf; r: the node's offset at the end of the step), plus what the flow
+  // itself moves a touching neighbour relative to it, per node (the relative displacement
+  // gammadot dt r_y of nodes 2 a_node apart has mean square (gammadot dt)^2 (2a)^2 / 3 over
+  // directions, shared by the two nodes). What the displacement bound controls (StepControl).
+  double mean_square_node_step(const System& s) const;
   // Called on attempts with want_virial (StressSampler): Start after the solve at the start of
   // the step, Final after the midpoint solve (Euler-Maruyama with midpoint drift only). The hook
   // may solve again: the integrator has copied what it needs, and the hook restores the warm start.

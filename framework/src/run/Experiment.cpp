@@ -83,6 +83,13 @@ ParamSchema run_schema() {
            "error of any body's surface point (midpoint - Euler for Brownian runs, RK3 - midpoint rule for "
            "kT = 0)")
       .greater(0.0);
+  s.number("displacement", 0.0, "a",
+           "with dt: auto, a bound on the step: at most the dyadic piece of dt_max whose root mean square "
+           "node displacement relative to the imposed flow stays below this, predicted from the last step "
+           "(a weak-error rule for Brownian FLD averages: 0.03 is measured against the exact equilibrium, "
+           "docs/time_steps.md \"The displacement bound\"); without tolerance it is the only rule and only "
+           "the guard rejects; 0 = none")
+      .at_least(0.0);
   s.number("reject_at", 0.0, "",
            "with dt: auto, a step whose error estimate exceeds reject_at x tolerance is rejected and retried "
            "shorter on the same Brownian path; the controller keeps the typical error near the tolerance. "
@@ -450,6 +457,8 @@ Experiment parse_experiment(YAML::Node root, const std::string& file,
     ex.tolerance = rp.number("tolerance");
     ex.max_overlap = rp.number("max_overlap");
     ex.reject_at = rp.number("reject_at");  // 0: set below, once flow.brownian is known
+    ex.displacement = rp.number("displacement");
+    ex.error_control = !(ex.displacement > 0.0) || rp.given("tolerance");
     ex.refine = int(rp.integer("refine"));
     // The frame: observers, checkpoints and the step counter count it.
     ex.dt = ex.dt_auto ? ex.dt_max : rp.number("dt");
@@ -458,7 +467,7 @@ Experiment parse_experiment(YAML::Node root, const std::string& file,
                       "dt: auto needs dt_max (the longest step, and the sampling frame)");
     if (!ex.dt_auto && rp.given("dt_max"))
       run_errors->add(run["dt_max"], "run.dt_max", "only with dt: auto (a fixed dt is its own frame)");
-    for (const char* key : {"tolerance", "reject_at"})
+    for (const char* key : {"tolerance", "reject_at", "displacement"})
       if (!ex.dt_auto && rp.given(key))
         run_errors->add(run[key], std::string("run.") + key,
                         "only with dt: auto (a fixed step has no error control)");
@@ -488,19 +497,22 @@ Experiment parse_experiment(YAML::Node root, const std::string& file,
     ex.reject_at = ex.brownian ? 10.0 : 1.0;
   else if (ex.reject_at < 1.0)
     errors.add(run["reject_at"], "run.reject_at", "expected 0 (automatic) or a number >= 1");
-  if (ex.dt_auto && ex.brownian && ex.drift == "none")
+  if (ex.dt_auto && !ex.error_control && rp.given("reject_at"))
+    errors.add(run["reject_at"], "run.reject_at",
+               "only with run.tolerance (with run.displacement alone no step is rejected for its error)");
+  if (ex.dt_auto && ex.error_control && ex.brownian && ex.drift == "none")
     errors.add(run["drift"], "run.drift",
                "dt: auto needs the midpoint stage for its error estimate; drift: none has none");
-  if (ex.dt_auto && ex.integrator == "euler_maruyama" && !ex.brownian)
+  if (ex.dt_auto && ex.error_control && ex.integrator == "euler_maruyama" && !ex.brownian)
     errors.add(run["integrator"], "run.integrator",
                "dt: auto without Brownian motion needs rk3 (Euler has no embedded error estimate)");
   if (ex.brownian && ex.integrator == "rk3") {
     // Its stages make the thermal drift themselves; it has no error estimate for the noise and
     // no midpoint stage for the midpoint stress estimate.
-    if (ex.dt_auto)
+    if (ex.dt_auto && ex.error_control)
       errors.add(run["integrator"], "run.integrator",
-                 "rk3 with Brownian motion runs fixed steps (no error estimate for the noise); use "
-                 "euler_maruyama for dt: auto");
+                 "rk3 with Brownian motion has no error estimate for the noise: with dt: auto use "
+                 "euler_maruyama, or run.displacement alone");
     if (ex.drift == "none")
       errors.add(run["drift"], "run.drift",
                  "rk3 with Brownian motion always has the thermal drift (its stages make it); drift: none "

@@ -53,8 +53,10 @@ struct Experiment {
   double dt = 0.0, duration = 0.0;  // in time_unit; dt is the frame (dt_max with dt: auto)
   bool dt_auto = false;             // run.dt: auto (adaptive steps)
   double dt_max = 0.0, dt_min = 0.0, tolerance = 1e-3, reject_at = 10.0, max_overlap = 0.1;
-  int refine = 0;         // every frame in at least 2^refine steps
-  std::string time_unit;  // paper | diffusive | strain
+  double displacement = 0.0;  // run.displacement, a (0: no bound)
+  bool error_control = true;  // dt: auto with run.tolerance (or without run.displacement)
+  int refine = 0;             // every frame in at least 2^refine steps
+  std::string time_unit;      // paper | diffusive | strain
   std::int64_t seed = 42;
   std::string integrator;                             // auto | euler_maruyama | rk3
   std::string drift;                                  // midpoint | none

@@ -124,6 +124,8 @@ SimulationSettings settings_of(const Experiment& ex, const UserTimeUnit& unit, T
   s.control.dt_min = ex.dt_min * unit.scale;
   s.control.tolerance = ex.tolerance;
   s.control.reject_at = ex.reject_at;
+  s.control.error_control = ex.error_control;
+  s.control.displacement = ex.displacement;
   s.control.refine = ex.refine;
   s.guard.max_overlap = ex.max_overlap;
   s.threads = std::move(threads);
@@ -213,13 +215,16 @@ Simulation::Simulation(SimulationParts parts, SimulationSettings settings, Resul
 
   settings_.control.frame = settings_.dt;
   settings_.control.order = integrator_->error_order();
+  settings_.control.displacement_order = brownian_ ? 1.0 : 2.0;
   const StepControlSettings& control = settings_.control;
   log_ << "hydro: " << parts_.hydro_name << "; integrator: " << integrator_->describe() << "; ";
-  if (control.adaptive)
-    log_ << "dt: auto (adaptive, local error ~ " << control.tolerance
-         << " a, steps up to dt_max = " << settings_.user_dt << " " << settings_.time_unit << "), "
+  if (control.adaptive) {
+    log_ << "dt: auto (adaptive, ";
+    if (control.error_control) log_ << "local error ~ " << control.tolerance << " a, ";
+    if (control.displacement > 0.0) log_ << "rms node step <= " << control.displacement << " a, ";
+    log_ << "steps: dyadic pieces of dt_max = " << settings_.user_dt << " " << settings_.time_unit << "), "
          << settings_.total_steps << " frames of dt_max";
-  else
+  } else
     log_ << "dt = " << settings_.user_dt << " " << settings_.time_unit << ", " << settings_.total_steps
          << " steps";
   if (control.refine > 0)

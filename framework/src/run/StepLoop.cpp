@@ -38,9 +38,10 @@ StepLoop::StepLoop(System& sys, TimeIntegrator& integrator, VelocityEvaluator& e
       control_(control),
       guard_(guard),
       log_(log) {
-  if (control.adaptive && integrator.error_order() <= 0.0)
-    throw Error("adaptive time steps need an embedded error estimate: " + integrator.describe() +
-                " has none (use drift: midpoint for Brownian runs, rk3 for kT = 0)");
+  if (control.adaptive && control.error_control && integrator.error_order() <= 0.0)
+    throw Error(
+        "adaptive time steps with error control need an embedded error estimate: " + integrator.describe() +
+        " has none (use drift: midpoint for Brownian runs, rk3 for kT = 0, or only run.displacement)");
   integrator_.set_stress_stage(
       [this](StressStage stage, const System& s, VelocityEvaluator& ev) { stress_.sample(stage, s, ev); });
 }
@@ -65,6 +66,7 @@ void StepLoop::step(ResultSink& sink) {
   warm_start_ = evaluator_.warm_start();
 
   const double tolerance = control_.settings().tolerance;
+  const bool error_control = control_.settings().adaptive && control_.settings().error_control;
   control_.begin_frame(std::uint64_t(sys_.step()));
   while (!control_.frame_done()) {
     const NoiseInterval interval = control_.next();
@@ -82,7 +84,7 @@ void StepLoop::step(ResultSink& sink) {
         why = Rejection::Overlap;
         detail = "nodes overlap by " + log_number(-a.min_gap) +
                  " a, more than run.max_overlap = " + log_number(guard_.max_overlap) + " a";
-      } else if (control_.settings().adaptive && a.error > tolerance * control_.settings().reject_at) {
+      } else if (error_control && a.error > tolerance * control_.settings().reject_at) {
         why = Rejection::Error;
         detail = "local error " + log_number(a.error) + " a above " +
                  log_number(control_.settings().reject_at) + " x run.tolerance = " + log_number(tolerance) +
@@ -94,12 +96,13 @@ void StepLoop::step(ResultSink& sink) {
       why = Rejection::Solver;
       detail = e.what();
     }
-    const double ratio = control_.settings().adaptive ? a.error / tolerance : 0.0;
+    const double ratio = error_control ? a.error / tolerance : 0.0;
     if (ok) {
       integrator_.accept(sys_);
       gap_ = a.min_gap;
-      stats_.accepted(interval.duration(), a.min_gap, sys_.time());
-      control_.accept(ratio);
+      const double node_step = integrator_.mean_square_node_step(sys_);
+      stats_.accepted(interval.duration(), a.min_gap, sys_.time(), node_step);
+      control_.accept(ratio, node_step);
       continue;
     }
     integrator_.reject(sys_, evaluator_);
@@ -163,10 +166,14 @@ void StepLoop::warn_overlap(double gap, const NodePair* pair) {
         << (first ? " (further overlaps are reported when deeper)" : "") << "\n";
 }
 
+// {proposal, overlap frames, deepest warned, statistics..., displacement bound (0: none), its
+// rate}; an earlier build's state ends with its shorter statistics.
 std::vector<double> StepLoop::save_state() const {
   std::vector<double> v{control_.proposal(), double(overlap_frames_), deepest_warned_};
   const std::vector<double> s = stats_.save();
   v.insert(v.end(), s.begin(), s.end());
+  v.push_back(std::isfinite(control_.displacement_bound()) ? control_.displacement_bound() : 0.0);
+  v.push_back(control_.displacement_rate());
   return v;
 }
 
@@ -178,10 +185,14 @@ void StepLoop::restore_state(const std::vector<double>& state) {
     if (!std::isfinite(x) || std::abs(x) > 0x1p62)
       throw Error("step state in the checkpoint holds an impossible value (" + log_number(x) + ")");
   if (!(state[0] > 0.0)) throw Error("step state in the checkpoint holds a step proposal <= 0");
-  control_.restore(state[0]);
+  const bool current = state.size() == 3 + StepStatistics::kSavedValues + 2;
+  if (current)
+    control_.restore(state[0], state[state.size() - 2], state.back());
+  else
+    control_.restore(state[0]);
   overlap_frames_ = std::int64_t(state[1]);
   deepest_warned_ = state[2];
-  stats_.restore(std::vector<double>(state.begin() + 3, state.end()));
+  stats_.restore(std::vector<double>(state.begin() + 3, state.end() - (current ? 2 : 0)));
 }
 
 }  // namespace fldsim
