@@ -16,7 +16,7 @@ export OMP_NUM_THREADS=${OMP_NUM_THREADS:-1}
 # Equilibrium (issue 11): Brownian runs (N = 125-500) against the Monte Carlo oracle of the same
 # potential: g(r) bin tables, contact and cutoff ratios, Z of free-draining runs and Z_particle of
 # FLD runs for spheres, c/a = 0.2 and c/a = 1, FLD at dt: auto (tests/equilibrium/
-# ValidateEquilibrium.cpp; validate/README.md lists the cases). About 66 CPU minutes in all (094d505), 18 more for the two fused_phi05 cases and 28 for the two auto_*_frame_phi05 cases (7 December 2026).
+# ValidateEquilibrium.cpp; validate/README.md lists the cases). About 66 CPU minutes in all (094d505), 18 more for the two fused_phi05 cases and 28 for the two auto_*_frame_phi05 cases (7 December 2026), 38 for the three bound_* cases.
 # Each case is its own process (JOBS at a time, one thread each), its tables in
 # validate/results/equilibrium/CASE.txt; validate/results/equilibrium/cases.csv records every
 # finished case with the commit it was built from, so an interrupted `make validate` run again

@@ -17,9 +17,10 @@
 // fused_phi05 (fused dumbbells, phi 0.5, N 1000, FLD at 8e-4, 16 runs) and fused_phi05_lattice_start
 // (the same from the starts of the rule until December 2026: must fail), auto_measured_frame_phi05
 // (homonuclear c/a 0.2, phi 0.5, N 1000, dt: auto at tolerance 3e-2 with the frame at the measured
-// 8e-4) and auto_long_frame_phi05 (the same with a 1.6e-3 frame: must fail). Keys: n, phi, dt,
-// duration, equilibrate, blocks, every, seed, hydro, hydro_params, force_params, drift (midpoint|none),
-// integrator (euler_maruyama|rk3: the paper's RK3 with frozen Brownian forces; fixed dt),
+// 8e-4) and auto_long_frame_phi05 (the same with a 1.6e-3 frame: must fail), bound_phi05 and bound_phi03
+// (the displacement bound 0.028 a alone, frame 1.6e-3) and bound_long_phi05 (0.045 a: must fail). Keys: n,
+// phi, dt, duration, equilibrate, blocks, every, seed, hydro, hydro_params, force_params, drift
+// (midpoint|none), integrator (euler_maruyama|rk3: the paper's RK3 with frozen Brownian forces; fixed dt),
 // oracle_sweeps, oracle_blocks, stress_every, max_overlap, adaptive (0|1), tolerance, reject_at,
 // displacement (run.displacement, a), error_control (0|1: 0 = run.displacement alone), rejected
 // (bridge|redraw), start_rule (both|lattice: the Monte Carlo start's clocks), hard_core (0|1: the oracle's),
@@ -234,6 +235,20 @@ std::map<std::string, Case> cases() {
   frame.bd.sample_every = 5;
   frame.expect_pass = false;
   c["auto_long_frame_phi05"] = frame;
+  // The displacement bound alone (run.displacement 0.028 a, no tolerance; docs/time_steps.md, "The
+  // displacement bound") with the same 1.6e-3 frame: it takes 4e-4 at phi 0.5 and 2e-4 at phi 0.3
+  // and passes; at 0.045 a it takes the frame, 1.6e-3, and must fail.
+  Case bound = frame;
+  bound.bd.error_control = false;
+  bound.bd.displacement = 0.028;
+  bound.expect_pass = true;
+  c["bound_phi05"] = bound;
+  bound.scene.phi = 0.3;
+  c["bound_phi03"] = bound;
+  bound.scene.phi = 0.5;
+  bound.bd.displacement = 0.045;
+  bound.expect_pass = false;
+  c["bound_long_phi05"] = bound;
   return c;
 }
 

@@ -40,13 +40,14 @@ def main():
         for r in oracle:
             if r["phi"] != phi:
                 continue
-            adaptive = r["mode"] == "auto"
-            label = (f"auto, tol {r['tolerance']}, frame {r['dt_or_dtmax']}" if adaptive
-                     else f"fixed {r['dt_or_dtmax']}")
+            mode = r["mode"]
+            label = {"auto": f"auto, tol {r['tolerance']}, frame {r['dt_or_dtmax']}",
+                     "bound": f"bound {r['tolerance']} a, frame {r['dt_or_dtmax']}"}.get(
+                         mode, f"fixed {r['dt_or_dtmax']}")
+            marker, colour = {"auto": ("v", "C1"), "bound": ("s", "C2")}.get(mode, ("o", "C0"))
             passed = r["verdict"] == "pass"
-            ax.scatter(cost[key(r)], -math.log10(float(r["chi2_p"])), s=60, marker="v" if adaptive else "o",
-                       facecolors=("C1" if adaptive else "C0") if passed else "none",
-                       edgecolors="C1" if adaptive else "C0", zorder=3)
+            ax.scatter(cost[key(r)], -math.log10(float(r["chi2_p"])), s=60, marker=marker,
+                       facecolors=colour if passed else "none", edgecolors=colour, zorder=3)
             ax.annotate(label, (cost[key(r)], -math.log10(float(r["chi2_p"]))), textcoords="offset points",
                         xytext=(5, 4), fontsize=7)
         ax.axhline(-math.log10(0.005), ls="--", color="0.5", lw=1)
@@ -56,7 +57,8 @@ def main():
         ax.set_title(f"homonuclear c/a 0.2, φ {phi}, Pe 0: g(r) against the oracle")
         ax.grid(True, which="both", alpha=0.3)
     axes[0].set_ylabel("-log10 chi-square p, g(r) vs oracle (16 runs)")
-    fig.text(0.01, 0.01, "circles fixed steps, triangles dt: auto; filled: passes the oracle; dashed: p = 0.005",
+    fig.text(0.01, 0.01, "circles fixed steps, triangles dt: auto with a tolerance, squares dt: auto with "
+             "run.displacement; filled: passes the oracle; dashed: p = 0.005",
              fontsize=7)
     fig.tight_layout(rect=(0, 0.03, 1, 1))
     fig.savefig(out, dpi=130)

@@ -86,7 +86,7 @@ ParamSchema run_schema() {
   s.number("displacement", 0.0, "a",
            "with dt: auto, a bound on the step: at most the dyadic piece of dt_max whose root mean square "
            "node displacement relative to the imposed flow stays below this, predicted from the last step "
-           "(a weak-error rule for Brownian FLD averages: 0.03 is measured against the exact equilibrium, "
+           "(a weak-error rule for Brownian FLD averages: 0.028 is measured against the exact equilibrium, "
            "docs/time_steps.md \"The displacement bound\"); without tolerance it is the only rule and only "
            "the guard rejects; 0 = none")
       .at_least(0.0);
