@@ -104,11 +104,11 @@ void StepControl::accept(double error_ratio, double mean_square_step) {
         const double rate = mean_square_step / std::pow(taken, p);
         rate_ = rate_ > 0.0 ? rate_ + 0.25 * (rate - rate_) : rate;
       }
-      const double h = rate_ > 0.0 ? std::pow(l2 / rate_, 1.0 / p) : taken * settings_.grow_max;
+      const double bound = rate_ > 0.0 ? std::pow(l2 / rate_, 1.0 / p) : taken * settings_.grow_max;
       // Growth relative to the longer of the piece and the bound, so that a piece cut short by the
       // grid or a retry does not drag the bound down.
       const double reach = std::max(taken, std::min(hd_, settings_.frame));
-      hd_ = std::clamp(h, taken * settings_.shrink_min, reach * settings_.grow_max);
+      hd_ = std::clamp(bound, taken * settings_.shrink_min, reach * settings_.grow_max);
       hd_ = std::clamp(hd_, settings_.dt_min, settings_.frame);
     }
   }
