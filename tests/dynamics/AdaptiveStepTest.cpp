@@ -130,9 +130,9 @@ TEST(StepControl, RefineSplitsEveryFrameOnItsOwnPath) {
   }
 }
 
-// The displacement bound (run.displacement) against a model of the mean square node step,
-// m(h) = A h + B h^2 (diffusion plus drift), predicted with exponent p: the steps settle on the
-// longest dyadic piece of the frame with m(h) <= l^2, never a longer one.
+// The displacement bound alone (run.displacement) against a model of the mean square node step,
+// m(h) = A h + B h^2 (diffusion plus drift), predicted with exponent p: the frames settle on the
+// fewest equal pieces with m(h) <= l^2, never a longer piece.
 std::vector<double> bounded_steps(double A, double B, double l2, double order, int frames) {
   StepControlSettings s;
   s.adaptive = true;
@@ -159,14 +159,60 @@ void expect_settled(const std::vector<double>& steps, double piece, std::size_t 
 }
 
 TEST(StepControl, DisplacementBoundTakesTheLongestPieceBelowIt) {
-  // Diffusion (p = 1), m = 6 h, l^2 = 6 x 0.45: h* = 0.45, so 1/4 (the nearest piece would be 1/2).
+  // Diffusion (p = 1), m = 6 h, l^2 = 6 x 0.45: h* = 0.45, so thirds (the nearest count, 2, would
+  // take halves; dyadic pieces quarters).
   const std::vector<double> d = bounded_steps(6.0, 0.0, 6.0 * 0.45, 1.0, 8);
-  EXPECT_EQ(d.front(), 1.0 / 16.0);  // the first step: frame / 16
-  expect_settled(d, 0.25, 12);
-  // Diffusion with a drift of 5 % of m (p = 1): h + 0.2 h^2 = 0.3 at h* = 0.284, so 1/4.
-  expect_settled(bounded_steps(1.0, 0.2, 0.3, 1.0, 8), 0.25, 12);
-  // A drift alone (kT = 0, p = 2): m = (0.8 h)^2, l = 0.8 x 0.3: h* = 0.3, so 1/4.
-  expect_settled(bounded_steps(0.0, 0.64, 0.64 * 0.09, 2.0, 8), 0.25, 12);
+  EXPECT_EQ(d.front(), 1.0 / 16.0);  // the first frame: sixteen pieces (the first bound, frame / 16)
+  expect_settled(d, 1.0 / 3.0, 12);
+  // Diffusion with a drift of 5 % of m (p = 1): h + 0.2 h^2 at h* = 0.36, so thirds.
+  expect_settled(bounded_steps(1.0, 0.2, 0.36 + 0.2 * 0.36 * 0.36, 1.0, 8), 1.0 / 3.0, 12);
+  // A drift alone (kT = 0, p = 2): m = (0.8 h)^2, l = 0.8 x 0.21: h* = 0.21, so fifths.
+  expect_settled(bounded_steps(0.0, 0.64, 0.64 * 0.21 * 0.21, 2.0, 8), 1.0 / 5.0, 12);
+}
+
+// Each equal piece is a base interval of its own, keyed apart from every frame and every other
+// piece, drawn as one plain stream (no bridge terms); a guard rejection halves the piece and is
+// bridged inside it.
+TEST(StepControl, DisplacementBoundPiecesAreBaseIntervalsOfTheirOwn) {
+  StepControlSettings s;
+  s.adaptive = true;
+  s.error_control = false;
+  s.frame = 1.0;
+  s.displacement = std::sqrt(6.0 * 0.45);
+  StepControl c(s);
+  c.restore(1.0, 0.45, 6.0);  // settled: h* = 0.45
+  c.begin_frame(5);
+  ASSERT_EQ(c.pieces(), 3u);
+  std::vector<std::uint64_t> bases;
+  BrownianBridge bridge;
+  BrownianBridge::Terms t;
+  for (int j = 0; j < 3; ++j) {
+    EXPECT_EQ(c.next().depth, 0);
+    EXPECT_EQ(c.next().length, 1.0 / 3.0);
+    EXPECT_EQ(bridge.terms(c.next(), t), 1);  // one plain draw
+    EXPECT_EQ(t[0].stage, 0u);
+    EXPECT_EQ(c.next_ends_frame(), j == 2);
+    bases.push_back(c.next().base);
+    if (j == 1) {  // the guard rejects: the retry is the first half of the same piece
+      ASSERT_TRUE(c.reject(Rejection::Overlap, 0.0));
+      EXPECT_EQ(c.next().base, bases.back());
+      EXPECT_EQ(c.next().depth, 1);
+      EXPECT_EQ(bridge.terms(c.next(), t), 2);
+      c.accept(0.0, 6.0 * c.next_duration());
+      EXPECT_EQ(c.next().depth, 1);  // the second half
+      EXPECT_EQ(c.next().index, 1u);
+    }
+    c.accept(0.0, 6.0 * c.next_duration());
+  }
+  EXPECT_TRUE(c.frame_done());
+  EXPECT_EQ(bases[0], piece_base(5, 3, 0));
+  EXPECT_EQ(bases[2], piece_base(5, 3, 2));
+  for (std::uint64_t b : bases) EXPECT_GE(b, kMaxPiecedFrame);  // no frame's key
+  EXPECT_NE(bases[0], bases[1]);
+  EXPECT_NE(bases[1], bases[2]);
+  EXPECT_NE(piece_base(5, 3, 1), piece_base(5, 4, 1));
+  EXPECT_NE(piece_base(5, 3, 1), piece_base(6, 3, 1));
+  EXPECT_EQ(piece_base(5, 1, 0), 5u);  // one piece: the frame itself
 }
 
 TEST(StepControl, DisplacementBoundAndErrorControlTakeTheShorterAndResume) {
@@ -376,7 +422,8 @@ TEST(AdaptiveSteps, MultiplicativeNoiseIsExactWithRareRejectionsOnly) {
 // flanks) and the past noise. Chosen from the past only, the steps select no path: the trap's
 // variance stays exact. l = 0.17 a: steps of about l^2 / (2 m) = 0.03 a^2/D0 at m = 0.5. Sizing
 // each step by its own noise instead (rejecting an attempt whose displacement exceeds l, retried
-// on the bridge, 24 % of attempts) was run once against it: <x^2> 0.882 +- 0.023 (z -5.1), failed.
+// on the bridge, 24 % of attempts) was run once against it: <x^2> 0.882 +- 0.023 (z -5.1), failed;
+// so was one noise key for every equal piece of a frame (the pieces' increments equal): 2.12 +- 0.12.
 TEST(AdaptiveSteps, DisplacementBoundChosenFromThePastIsExact) {
   EulerMaruyama em(2025, true, DriftScheme::Midpoint, 1);
   StepControlSettings control;
@@ -395,9 +442,9 @@ TEST(AdaptiveSteps, DisplacementBoundChosenFromThePastIsExact) {
 // move relative to the imposed flow by sqrt(2 D0 h) per coordinate (kT = 1, D0 = 1 in internal
 // units), so the mean square node step is exactly 6 D0 h + (2/3) (gammadot h a)^2, the second term
 // the flow's displacement of a touching neighbour (TimeIntegrator::mean_square_node_step); the
-// affine displacement gammadot y h itself (up to 1.25 a per step here) must not count. The steps
-// settle on the longest piece with m(h) <= l^2 (l^2 = 6 x 0.35 frame: a quarter frame; m of 64
-// nodes scatters by 10 % from step to step, 4 % averaged, so h* is 7 SD from either piece).
+// affine displacement gammadot y h itself (up to 1.7 a per step here) must not count. The frames
+// settle on the fewest equal pieces with m(h) <= l^2 (l^2 = m(0.4 frame): thirds; m of 64 nodes
+// scatters by 10 % from step to step, 4 % averaged, so h* is 5 SD from either count's piece).
 // Counting the affine displacement (U instead of U - U_inf) was run once against it: fails.
 TEST(AdaptiveSteps, DisplacementBoundMeasuresTheStepRelativeToTheFlow) {
   Physics ph;
@@ -418,7 +465,8 @@ TEST(AdaptiveSteps, DisplacementBoundMeasuresTheStepRelativeToTheFlow) {
   control.adaptive = true;
   control.error_control = false;
   control.frame = frame;
-  control.displacement = std::sqrt(6.0 * 0.35 * frame);
+  const double h_star = 0.4 * frame;
+  control.displacement = std::sqrt(6.0 * h_star + (2.0 / 3.0) * std::pow(ph.shear_rate * h_star, 2));
   EulerMaruyama em(77, true, DriftScheme::Midpoint, n);
   std::vector<std::shared_ptr<Observer>> none;
   StepGuard guard;
@@ -432,13 +480,13 @@ TEST(AdaptiveSteps, DisplacementBoundMeasuresTheStepRelativeToTheFlow) {
   const std::int64_t steps0 = st.accepted_steps();
   const int frames = 100;
   for (int f = 0; f < frames; ++f) loop.step(sink);
-  EXPECT_EQ(st.accepted_steps() - steps0, 4 * frames);  // every step a quarter frame
-  EXPECT_EQ(st.max_dt(), 0.25 * frame);
-  const double h = 0.25 * frame;
+  EXPECT_EQ(st.accepted_steps() - steps0, 3 * frames);  // every step a third of the frame
+  const double h = frame / 3.0;
+  EXPECT_EQ(st.max_dt(), h);
   const double ms = (sum() - sum0) / double(st.accepted_steps() - steps0);
   const double exact = 6.0 * h + (2.0 / 3.0) * std::pow(ph.shear_rate * h, 2);
-  // |step|^2 = 2 h chi^2_3 per node: mean 6 h, standard deviation sqrt(24) h; n x 400 of them.
-  const double se = std::sqrt(24.0) * h / std::sqrt(double(n) * 4.0 * frames);
+  // |step|^2 = 2 h chi^2_3 per node: mean 6 h, standard deviation sqrt(24) h; n x 300 of them.
+  const double se = std::sqrt(24.0) * h / std::sqrt(double(n) * 3.0 * frames);
   std::printf("mean square node step %.6g against %.6g (SE %.2g)\n", ms, exact, se);
   EXPECT_NEAR(ms, exact, 3.0 * se);
 }

@@ -18,7 +18,7 @@
 // (the same from the starts of the rule until December 2026: must fail), auto_measured_frame_phi05
 // (homonuclear c/a 0.2, phi 0.5, N 1000, dt: auto at tolerance 3e-2 with the frame at the measured
 // 8e-4) and auto_long_frame_phi05 (the same with a 1.6e-3 frame: must fail), bound_phi05 and bound_phi03
-// (the displacement bound 0.028 a alone, frame 1.6e-3) and bound_long_phi05 (0.045 a: must fail). Keys: n,
+// (the displacement bound 0.022 a alone, frame 1.6e-3) and bound_long_phi05 (0.045 a: must fail). Keys: n,
 // phi, dt, duration, equilibrate, blocks, every, seed, hydro, hydro_params, force_params, drift
 // (midpoint|none), integrator (euler_maruyama|rk3: the paper's RK3 with frozen Brownian forces; fixed dt),
 // oracle_sweeps, oracle_blocks, stress_every, max_overlap, adaptive (0|1), tolerance, reject_at,
@@ -235,12 +235,14 @@ std::map<std::string, Case> cases() {
   frame.bd.sample_every = 5;
   frame.expect_pass = false;
   c["auto_long_frame_phi05"] = frame;
-  // The displacement bound alone (run.displacement 0.028 a, no tolerance; docs/time_steps.md, "The
-  // displacement bound") with the same 1.6e-3 frame: it takes 4e-4 at phi 0.5 and 2e-4 at phi 0.3
-  // and passes; at 0.045 a it takes the frame, 1.6e-3, and must fail.
+  // The displacement bound alone (run.displacement 0.022 a, no tolerance; docs/time_steps.md, "The
+  // displacement bound") with the same 1.6e-3 frame cut into equal steps: it takes 4e-4 (a quarter
+  // frame) at phi 0.5 and 1.6e-4 (a tenth) at phi 0.3 and passes; at 0.045 a it takes the frame,
+  // 1.6e-3, and must fail. (0.028 takes a third of the frame at phi 0.5, whose 5.3e-4 failed one of
+  // three sets of 16 runs.)
   Case bound = frame;
   bound.bd.error_control = false;
-  bound.bd.displacement = 0.028;
+  bound.bd.displacement = 0.022;
   bound.expect_pass = true;
   c["bound_phi05"] = bound;
   bound.scene.phi = 0.3;

@@ -10,6 +10,14 @@ double NoiseInterval::duration() const {
   return std::ldexp(length, -depth);
 }
 
+std::uint64_t piece_base(std::uint64_t frame, std::uint32_t pieces, std::uint32_t piece) {
+  if (pieces <= 1) return frame;
+  if (pieces > kMaxPieces || piece >= pieces || frame >= kMaxPiecedFrame)
+    throw Error("Brownian bridge: no piece " + std::to_string(piece) + " of " + std::to_string(pieces) +
+                " of frame " + std::to_string(frame));
+  return frame + (std::uint64_t(pieces - 1) << 40) + (std::uint64_t(piece) << 52);
+}
+
 int BrownianBridge::terms(const NoiseInterval& iv, Terms& out) const {
   if (iv.depth < 0 || iv.depth > NoiseInterval::kMaxDepth || (iv.depth < 64 && iv.index >> iv.depth) != 0)
     throw Error("Brownian bridge: no dyadic node (depth " + std::to_string(iv.depth) + ", index " +

@@ -17,6 +17,12 @@
 // s_l = +1 (-1) when the path goes left (right) below its ancestor n_l at depth l. Any dyadic
 // partition of a base interval therefore sees one Brownian path, whatever was tried and rejected
 // before: the accepted steps carry the right law, and a resumed run recomputes the same numbers.
+//
+// A frame may also be cut into n equal *pieces* chosen before it starts (the displacement bound
+// alone, StepControl.hpp): piece j of n is a base interval of its own, key piece_base(k, n, j),
+// so a piece's noise is one plain draw (stage 0, as cheap as a fixed step's) and a rejected
+// attempt inside it is bridged as above. The pieces' draws are independent of the whole frame's:
+// such a run has its own Brownian path, chosen from the past like its steps.
 #pragma once
 
 #include <array>
@@ -35,6 +41,13 @@ struct NoiseInterval {
 
   double duration() const;  // H_k / 2^depth
 };
+
+// The base interval of piece j of n equal pieces of frame k: k itself for n = 1 (the frame's
+// own path); otherwise k + (n - 1) 2^40 + j 2^52, distinct from every frame key and every
+// other piece (k < 2^40, n <= kMaxPieces).
+constexpr std::uint32_t kMaxPieces = 4096;
+constexpr std::uint64_t kMaxPiecedFrame = std::uint64_t(1) << 40;
+std::uint64_t piece_base(std::uint64_t frame, std::uint32_t pieces, std::uint32_t piece);
 
 // W(d, i) = sum_j coefficient_j xi_{stage_j}, the xi of different stages independent N(0, 1).
 struct BridgeTerm {

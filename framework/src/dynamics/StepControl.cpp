@@ -54,8 +54,26 @@ void StepControl::restore(double proposal, double displacement_bound, double dis
 
 void StepControl::begin_frame(std::uint64_t frame_index) {
   done_ = false;
+  frame_index_ = frame_index;
+  pieces_ = 1;
+  piece_ = 0;
+  if (equal_pieces()) {
+    const double n = std::ceil(settings_.frame / hd_ * (1.0 - 1e-9));
+    const double refined = std::ldexp(1.0, settings_.refine);
+    pieces_ = std::uint32_t(std::clamp(std::max(n, refined), 1.0, double(kMaxPieces)));
+    if (pieces_ > 1 && frame_index >= kMaxPiecedFrame)
+      throw Error("step control: frame " + std::to_string(frame_index) +
+                  " is beyond the last that run.displacement can cut into pieces (2^40)");
+  }
+  // Inside a piece, run.refine asks only for what the piece count has not done: piece / 2^r <=
+  // frame / 2^refine with r = refine - floor(log2 n).
+  refine_depth_ = std::max(0, settings_.refine - (int(std::bit_width(pieces_)) - 1));
+  begin_piece();
+}
+
+void StepControl::begin_piece() {
   position_ = 0;
-  interval_ = NoiseInterval{frame_index, settings_.frame, 0, 0, 0};
+  interval_ = NoiseInterval{piece_base(frame_index_, pieces_, piece_), settings_.frame / pieces_, 0, 0, 0};
   settle_depth(0, false);
 }
 
@@ -72,16 +90,21 @@ double StepControl::factor(double error_ratio) const {
 // forced by the position or the minimum. Nearest rather than shorter: the error then scatters
 // around the tolerance instead of below it (x 2^(+-order/2)), and reject_at leaves room for it.
 void StepControl::settle_depth(int minimum_depth, bool shorter) {
-  const double H = settings_.frame;
+  const double H = interval_.length;
   int want = 0;
   if (h_ < H) {
     const double levels = std::log2(H / h_);
     want = shorter ? int(std::ceil(levels - 1e-9)) : int(std::lround(levels));
   }
-  if (bounded() && hd_ < H) want = std::max(want, int(std::ceil(std::log2(H / hd_) - 1e-9)));  // at most hd
+  // At most hd; equal pieces were cut to it when the frame began, and are split inside the frame
+  // only where the bound has since fallen below 4/5 of a piece (the start, a sudden jam), not
+  // for the 2-4 % step-to-step scatter of the averaged rate, which would halve every piece cut
+  // close to the bound.
+  const bool split = bounded() && hd_ < H && (!equal_pieces() || hd_ < 0.8 * H);
+  if (split) want = std::max(want, int(std::ceil(std::log2(H / hd_) - 1e-9)));
   const int aligned =
       position_ == 0 ? 0 : NoiseInterval::kMaxDepth - std::countr_zero(position_);  // coarsest boundary
-  const int floor = std::max({aligned, minimum_depth, settings_.refine});
+  const int floor = std::max({aligned, minimum_depth, refine_depth_});
   int depth = std::min(std::max(want, floor), NoiseInterval::kMaxDepth);
   while (depth > floor && std::ldexp(H, -depth) < settings_.dt_min * (1.0 - 1e-9)) --depth;
   interval_.depth = depth;
@@ -115,7 +138,8 @@ void StepControl::accept(double error_ratio, double mean_square_step) {
   position_ += kWhole >> interval_.depth;
   interval_.attempt++;
   if (position_ == kWhole) {
-    done_ = true;
+    done_ = ++piece_ == pieces_;
+    if (!done_) begin_piece();
     return;
   }
   settle_depth(0, false);
@@ -129,7 +153,7 @@ bool StepControl::reject(Rejection why, double error_ratio) {
   }
   const int depth = interval_.depth + 1;
   if (depth > NoiseInterval::kMaxDepth ||
-      std::ldexp(settings_.frame, -depth) < settings_.dt_min * (1.0 - 1e-9))
+      std::ldexp(interval_.length, -depth) < settings_.dt_min * (1.0 - 1e-9))
     return false;
   interval_.attempt++;
   settle_depth(depth, true);

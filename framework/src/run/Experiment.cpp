@@ -84,11 +84,12 @@ ParamSchema run_schema() {
            "kT = 0)")
       .greater(0.0);
   s.number("displacement", 0.0, "a",
-           "with dt: auto, a bound on the step: at most the dyadic piece of dt_max whose root mean square "
-           "node displacement relative to the imposed flow stays below this, predicted from the last step "
-           "(a weak-error rule for Brownian FLD averages: 0.028 is measured against the exact equilibrium, "
-           "docs/time_steps.md \"The displacement bound\"); without tolerance it is the only rule and only "
-           "the guard rejects; 0 = none")
+           "with dt: auto, a bound on the step's root mean square node displacement relative to the imposed "
+           "flow, predicted from the past steps (a weak-error rule for Brownian FLD averages: 0.022 is "
+           "measured against the exact equilibrium, docs/time_steps.md \"The displacement bound\"). Alone "
+           "(no tolerance) it cuts each dt_max frame into the fewest equal steps below it and only the guard "
+           "rejects; with tolerance the step is the shorter of the controller's and the longest dyadic piece "
+           "of dt_max below the bound; 0 = none")
       .at_least(0.0);
   s.number("reject_at", 0.0, "",
            "with dt: auto, a step whose error estimate exceeds reject_at x tolerance is rejected and retried "

@@ -222,7 +222,8 @@ Simulation::Simulation(SimulationParts parts, SimulationSettings settings, Resul
     log_ << "dt: auto (adaptive, ";
     if (control.error_control) log_ << "local error ~ " << control.tolerance << " a, ";
     if (control.displacement > 0.0) log_ << "rms node step <= " << control.displacement << " a, ";
-    log_ << "steps: dyadic pieces of dt_max = " << settings_.user_dt << " " << settings_.time_unit << "), "
+    log_ << "steps: " << (control.error_control ? "dyadic" : "equal")
+         << " pieces of dt_max = " << settings_.user_dt << " " << settings_.time_unit << "), "
          << settings_.total_steps << " frames of dt_max";
   } else
     log_ << "dt = " << settings_.user_dt << " " << settings_.time_unit << ", " << settings_.total_steps
