@@ -215,6 +215,34 @@ TEST(StepControl, DisplacementBoundPiecesAreBaseIntervalsOfTheirOwn) {
   EXPECT_EQ(piece_base(5, 1, 0), 5u);  // one piece: the frame itself
 }
 
+// Inside a frame the equal pieces stay as cut while the bound stays above 4/5 of a piece (the
+// averaged rate's scatter would otherwise halve pieces cut close to it), and a piece is halved once
+// the bound falls below that (a jam). Rate m / h restored at 6, l^2 = 2.7: bound 0.45, thirds; the
+// average takes a quarter of each new rate.
+TEST(StepControl, DisplacementBoundSplitsAPieceOnlyWhenItFallsWellBelowIt) {
+  StepControlSettings s;
+  s.adaptive = true;
+  s.error_control = false;
+  s.frame = 1.0;
+  s.displacement = std::sqrt(2.7);
+  StepControl c(s);
+  c.restore(1.0, 0.45, 6.0);
+  c.begin_frame(0);
+  ASSERT_EQ(c.pieces(), 3u);
+  c.accept(0.0, 18.0 * c.next_duration());  // rate 6 -> 9: bound 0.3, below the piece, above 4/5 of it
+  EXPECT_NEAR(c.displacement_bound(), 0.3, 1e-12);
+  EXPECT_EQ(c.next().depth, 0);
+  c.accept(0.0, 27.0 * c.next_duration());  // rate 9 -> 13.5: bound 0.2, below 4/5 of the piece
+  EXPECT_NEAR(c.displacement_bound(), 0.2, 1e-12);
+  EXPECT_EQ(c.next().depth, 1);  // the last third in two halves
+  EXPECT_EQ(c.next().base, piece_base(0, 3, 2));
+  c.accept(0.0, 13.5 * c.next_duration());
+  c.accept(0.0, 13.5 * c.next_duration());
+  EXPECT_TRUE(c.frame_done());
+  c.begin_frame(1);
+  EXPECT_EQ(c.pieces(), 5u);  // the next frame is cut to the bound: fifths
+}
+
 TEST(StepControl, DisplacementBoundAndErrorControlTakeTheShorterAndResume) {
   StepControlSettings s;
   s.adaptive = true;
