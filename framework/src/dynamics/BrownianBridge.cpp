@@ -13,8 +13,9 @@ double NoiseInterval::duration() const {
 std::uint64_t piece_base(std::uint64_t frame, std::uint32_t pieces, std::uint32_t piece) {
   if (pieces <= 1) return frame;
   if (pieces > kMaxPieces || piece >= pieces || frame >= kMaxPiecedFrame)
-    throw Error("Brownian bridge: no piece " + std::to_string(piece) + " of " + std::to_string(pieces) +
-                " of frame " + std::to_string(frame));
+    throw Error("Brownian bridge: no key for piece " + std::to_string(piece) + " of " +
+                std::to_string(pieces) + " of frame " + std::to_string(frame) +
+                " (equal pieces need frame < 2^40 and at most " + std::to_string(kMaxPieces) + " pieces)");
   return frame + (std::uint64_t(pieces - 1) << 40) + (std::uint64_t(piece) << 52);
 }
 

@@ -61,9 +61,6 @@ void StepControl::begin_frame(std::uint64_t frame_index) {
     const double n = std::ceil(settings_.frame / hd_ * (1.0 - 1e-9));
     const double refined = std::ldexp(1.0, settings_.refine);
     pieces_ = std::uint32_t(std::clamp(std::max(n, refined), 1.0, double(kMaxPieces)));
-    if (pieces_ > 1 && frame_index >= kMaxPiecedFrame)
-      throw Error("step control: frame " + std::to_string(frame_index) +
-                  " is beyond the last that run.displacement can cut into pieces (2^40)");
   }
   // Inside a piece, run.refine asks only for what the piece count has not done: piece / 2^r <=
   // frame / 2^refine with r = refine - floor(log2 n).
