@@ -301,9 +301,11 @@ TEST(ExperimentRun, AdaptiveRunResumesBitIdenticallyOnAnyThreadCount) {
 }
 
 // The displacement bound's state (the bound and its averaged rate) is in the checkpoint too;
-// alone (no tolerance) and with the error controller.
+// alone (no tolerance) and with the error controller; and the pair-gap bound's (with its
+// statistics, saved after the rest).
 TEST(ExperimentRun, DisplacementBoundRunResumesBitIdentically) {
   expect_adaptive_resume_bit_identical("bound", "displacement: 0.02");
+  expect_adaptive_resume_bit_identical("gap", "gap_step: 0.02");
   expect_adaptive_resume_bit_identical("both", "displacement: 0.03, tolerance: 0.004");
 }
 

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <sstream>
+#include <tuple>
 
 #include "dynamics/BrownianStressProbe.hpp"
 #include "dynamics/Scene.hpp"
@@ -99,7 +100,9 @@ BrownianEquilibrium run_brownian(const EquilibriumScene& scene, const BrownianOp
   control.tolerance = opt.tolerance;
   control.reject_at = opt.reject_at;
   control.order = integrator.error_order();
-  control.displacement = opt.displacement;
+  control.displacement = opt.gap_step > 0.0 ? opt.gap_step : opt.displacement;
+  control.bound = opt.gap_step > 0.0 ? StepBound::NearPairGap : StepBound::NodeStep;
+  control.gap_range = opt.gap_range;
   control.error_control = opt.error_control;
   StepGuard guard;
   guard.max_overlap = opt.max_overlap;
@@ -146,6 +149,7 @@ BrownianEquilibrium run_brownian(const EquilibriumScene& scene, const BrownianOp
   out.accepted = loop.statistics().accepted_steps();
   out.rejected = loop.statistics().rejected_attempts();
   out.node_step_sum = std::pow(loop.statistics().rms_node_step(), 2) * double(out.accepted);
+  std::tie(out.gap_step_sum, out.near_pairs) = loop.statistics().gap_step_state();
   for (auto& o : observers) o->finish(info, sink);
   if (opt.stress_every > 0) {
     const auto& z = sink.scalar("results/stress/Z");
@@ -180,6 +184,8 @@ BrownianEquilibrium run_brownian_replicas(const EquilibriumScene& scene, Brownia
     out.accepted += r.accepted;
     out.rejected += r.rejected;
     out.node_step_sum += r.node_step_sum;
+    out.gap_step_sum += r.gap_step_sum;
+    out.near_pairs += r.near_pairs;
     out.min_gap = std::min(out.min_gap, r.min_gap);
     out.seconds += r.seconds;
   }

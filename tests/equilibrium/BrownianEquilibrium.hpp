@@ -49,6 +49,8 @@ struct BrownianOptions {
   // run.displacement (a; 0 = none); with error_control false it is the only rule (run.displacement
   // without run.tolerance).
   double displacement = 0.0;
+  // run.gap_step instead (a; 0 = none): the bound on the rms gap change of pairs nearer than gap_range.
+  double gap_step = 0.0, gap_range = 0.01;
   bool error_control = true;
   RejectedNoise rejected = RejectedNoise::Bridge;  // Redraw: the broken variant, for tests
   // The step loop's stability guard (run.max_overlap): a step leaving a deeper node overlap is
@@ -79,6 +81,8 @@ struct BrownianEquilibrium {
   std::int64_t accepted = 0;   // time steps taken
   std::int64_t rejected = 0;   // step attempts the loop rejected (0 for an undisturbed fixed-step run)
   double node_step_sum = 0.0;  // sum over accepted steps of their mean square node step, a^2
+  double gap_step_sum = 0.0;   // with gap_step: sum of the near pairs' squared gap changes, a^2
+  double near_pairs = 0.0;     // and how many pair-steps
   double min_gap = 0.0;        // smallest node surface gap seen at the samples
   double seconds = 0.0;
 };

@@ -18,11 +18,13 @@
 // (the same from the starts of the rule until December 2026: must fail), auto_measured_frame_phi05
 // (homonuclear c/a 0.2, phi 0.5, N 1000, dt: auto at tolerance 3e-2 with the frame at the measured
 // 8e-4) and auto_long_frame_phi05 (the same with a 1.6e-3 frame: must fail), bound_phi05 and bound_phi03
-// (the displacement bound 0.022 a alone, frame 1.6e-3) and bound_long_phi05 (0.045 a: must fail). Keys: n,
-// phi, dt, duration, equilibrate, blocks, every, seed, hydro, hydro_params, force_params, drift
+// (the displacement bound 0.022 a alone, frame 1.6e-3) and bound_long_phi05 (0.045 a: must fail), gap_phi05
+// and gap_phi03 (the pair-gap bound 0.005 a alone, frame 1.6e-3) and gap_long_phi03 (0.009 a: must fail).
+// Keys: n, phi, dt, duration, equilibrate, blocks, every, seed, hydro, hydro_params, force_params, drift
 // (midpoint|none), integrator (euler_maruyama|rk3: the paper's RK3 with frozen Brownian forces; fixed dt),
 // oracle_sweeps, oracle_blocks, stress_every, max_overlap, adaptive (0|1), tolerance, reject_at,
-// displacement (run.displacement, a), error_control (0|1: 0 = run.displacement alone), rejected
+// displacement (run.displacement, a), gap_step and gap_range (run.gap_step, run.gap_range, a), error_control
+// (0|1: 0 = the bound alone), rejected
 // (bridge|redraw), start_rule (both|lattice: the Monte Carlo start's clocks), hard_core (0|1: the oracle's),
 // contact_term (0|1: the hard core's contact term of the run's own configurations against the oracle's), runs
 // (R > 0: R independent runs of equilibrate + duration, seeds seed .. seed + R - 1, one block each, as the CI
@@ -251,6 +253,19 @@ std::map<std::string, Case> cases() {
   bound.bd.displacement = 0.045;
   bound.expect_pass = false;
   c["bound_long_phi05"] = bound;
+  // The pair-gap bound alone (run.gap_step 0.005 a over pairs nearer than 0.01 a; docs/time_steps.md,
+  // "The pair-gap bound"): near-contact gap changes do not depend on phi where lubrication sets
+  // them, and it takes 4e-4 at both phi; at 0.009 a it takes 1.6e-3 and must fail.
+  Case gap = bound;
+  gap.bd.displacement = 0.0;
+  gap.bd.gap_step = 0.005;
+  gap.expect_pass = true;
+  c["gap_phi05"] = gap;
+  gap.scene.phi = 0.3;
+  c["gap_phi03"] = gap;
+  gap.bd.gap_step = 0.009;
+  gap.expect_pass = false;
+  c["gap_long_phi03"] = gap;
   return c;
 }
 
@@ -314,6 +329,10 @@ void apply(Case& c, const std::string& kv) {
     c.bd.reject_at = std::stod(v);
   else if (k == "displacement")
     c.bd.displacement = std::stod(v);
+  else if (k == "gap_step")
+    c.bd.gap_step = std::stod(v);
+  else if (k == "gap_range")
+    c.bd.gap_range = std::stod(v);
   else if (k == "error_control")
     c.bd.error_control = v == "1";
   else if (k == "contact_term")
@@ -346,8 +365,11 @@ bool run_case(const std::string& name, const Case& c) {
             << (c.bd.adaptive
                     ? "auto (" +
                           (c.bd.error_control ? "tolerance " + std::to_string(c.bd.tolerance) + " a" : "") +
-                          (c.bd.error_control && c.bd.displacement > 0 ? ", " : "") +
-                          (c.bd.displacement > 0
+                          (c.bd.error_control && (c.bd.displacement > 0 || c.bd.gap_step > 0) ? ", " : "") +
+                          (c.bd.gap_step > 0
+                               ? "rms gap step of pairs nearer than " + std::to_string(c.bd.gap_range) +
+                                     " a <= " + std::to_string(c.bd.gap_step) + " a"
+                           : c.bd.displacement > 0
                                ? "rms node step <= " + std::to_string(c.bd.displacement) + " a"
                                : "") +
                           "), frame "
@@ -368,7 +390,11 @@ bool run_case(const std::string& name, const Case& c) {
   if (c.runs > 0) std::cout << "independent runs as blocks: " << c.runs << " from seed " << c.bd.seed << "\n";
   std::cout << "brownian: " << bd.steps << " frames, " << bd.accepted << " steps (" << bd.rejected
             << " attempts rejected), " << bd.seconds << " s, min gap " << bd.min_gap << " a, rms node step "
-            << (bd.accepted ? std::sqrt(bd.node_step_sum / double(bd.accepted)) : 0.0) << " a\n";
+            << (bd.accepted ? std::sqrt(bd.node_step_sum / double(bd.accepted)) : 0.0) << " a";
+  if (bd.near_pairs > 0)
+    std::cout << ", rms gap step " << std::sqrt(bd.gap_step_sum / bd.near_pairs) << " a ("
+              << bd.near_pairs / double(bd.accepted) << " near pairs per step)";
+  std::cout << "\n";
   bool ok = true;
   const auto z = oracle::compare_means(bd.Z, mc.Z);
   std::printf("Z: dynamics %.4f +- %.4f", bd.Z.mean, bd.Z.se);

@@ -408,6 +408,8 @@ RunCheckReport check_run(const Experiment& ex, const PluginRegistry& registry, c
       if (hydro) range = std::max(range, hydro->pair_range(*sys));
       for (std::size_t i = 0; i < forces.size(); ++i)
         if (forces[i]) range = std::max(range, forces[i]->range(*sys));
+      if (ex.dt_auto && ex.gap_step > 0.0)  // the list holds the pairs run.gap_step measures
+        for (const Node& n : sys->shape().nodes()) range = std::max(range, 2.0 * n.radius + ex.gap_range);
     } catch (const std::exception& e) {
       problems.at_block(ex.hydro, e.what());
     }

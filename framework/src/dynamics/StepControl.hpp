@@ -52,6 +52,13 @@
 //    instead of 2, and the noise costs what a fixed step's does (a depth-d dyadic piece draws
 //    d + 1 streams: +6-14 % per step at N = 1000, depths 1-3). Should the bound fall below 4/5
 //    of a piece within the frame, the piece is halved as a rejected one would be.
+//  - Pair-gap bound (run.gap_step = l, StepBound::NearPairGap): the same rule, prediction and
+//    pieces, on another measure: the mean square change of the surface gap of the node pairs
+//    nearer than run.gap_range, plus the imposed flow's normal displacement of each
+//    (PairGapStep.hpp). Near contact the gap changes are set by lubrication, so a given step
+//    changes them alike at phi 0.3 and 0.5 (rms 0.0046 and 0.0045 a at 4e-4 a^2/D0, N = 1000),
+//    where its rms node step differs by 1.6x (0.033 and 0.021 a): one l gives both phi the step
+//    their equilibrium structure allows (docs/time_steps.md, "The pair-gap bound").
 #pragma once
 
 #include <cstdint>
@@ -60,14 +67,22 @@
 
 namespace fldsim {
 
+// What the step bound (run.displacement or run.gap_step) measures of a step.
+enum class StepBound {
+  NodeStep,    // rms node displacement relative to the imposed flow (TimeIntegrator::mean_square_node_step)
+  NearPairGap  // rms change of the surface gap of node pairs nearer than gap_range (PairGapStep.hpp)
+};
+
 struct StepControlSettings {
   bool adaptive = false;
-  double frame = 0.0;               // run.dt, or run.dt_max for `dt: auto` (internal time units)
-  double dt_min = 0.0;              // no step below this (0 = frame / 2^24); a run that needs one stops
-  int refine = 0;                   // every step at most frame / 2^refine
-  double tolerance = 1e-3;          // local error target, a (adaptive only): the controller aims at it
-  bool error_control = true;        // adaptive: the embedded estimate's controller acts (run.tolerance)
-  double displacement = 0.0;        // adaptive: bound on the rms node displacement per step, a (0: none)
+  double frame = 0.0;         // run.dt, or run.dt_max for `dt: auto` (internal time units)
+  double dt_min = 0.0;        // no step below this (0 = frame / 2^24); a run that needs one stops
+  int refine = 0;             // every step at most frame / 2^refine
+  double tolerance = 1e-3;    // local error target, a (adaptive only): the controller aims at it
+  bool error_control = true;  // adaptive: the embedded estimate's controller acts (run.tolerance)
+  double displacement = 0.0;  // adaptive: the step bound l, a (0: none), on what `bound` measures
+  StepBound bound = StepBound::NodeStep;
+  double gap_range = 0.01;          // NearPairGap: pairs with a surface gap below this, a
   double displacement_order = 1.0;  // p of the prediction: 1 with Brownian motion, 2 without
   double reject_at = 10.0;          // an attempt whose estimate exceeds reject_at * tolerance is rejected
   double order = 1.5;  // the error estimate scales as h^order: 1.5 Euler-Maruyama/midpoint, 3 RK3
@@ -96,8 +111,9 @@ class StepControl {
   bool frame_done() const { return done_; }
 
   // error_ratio: estimate / tolerance (ignored in fixed-step mode and without error control);
-  // mean_square_step: mean over nodes of the squared displacement of the step relative to the
-  // imposed flow, a^2 (TimeIntegrator::mean_square_node_step; used by the displacement bound).
+  // mean_square_step: what the bound measures of the step (StepBound), a^2: the mean over nodes
+  // of the squared displacement relative to the imposed flow, or over near pairs of the squared
+  // gap change (0: nothing measured, the averaged rate keeps its value).
   void accept(double error_ratio, double mean_square_step = 0.0);
   // Returns false when the retry would be shorter than dt_min (the run cannot go on).
   bool reject(Rejection why, double error_ratio);

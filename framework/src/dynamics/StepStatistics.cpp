@@ -49,6 +49,10 @@ double StepStatistics::rms_node_step() const {
   return node_steps_ ? std::sqrt(node_step_sum_ / double(node_steps_)) : 0.0;
 }
 
+double StepStatistics::rms_gap_step() const {
+  return gap_pairs_ ? std::sqrt(gap_step_sum_ / double(gap_pairs_)) : 0.0;
+}
+
 std::string StepStatistics::text(double time_scale, const std::string& unit) const {
   std::ostringstream s;
   s.precision(3);
@@ -69,6 +73,9 @@ std::string StepStatistics::text(double time_scale, const std::string& unit) con
   if (accepted_ > 0)
     s << "; smallest gap " << min_gap_ << " a at t = " << min_gap_time_ / time_scale << " " << unit;
   if (node_steps_ > 0) s << "; rms node step " << rms_node_step() << " a";
+  if (gap_pairs_ > 0)
+    s << "; rms gap step " << rms_gap_step() << " a (" << double(gap_pairs_) / double(accepted_)
+      << " near pairs per step)";
   return s.str();
 }
 
@@ -91,6 +98,15 @@ void StepStatistics::write(ResultSink& sink, double time_scale, const std::strin
     sink.write_scalar("/results/steps/rms_node_step", rms_node_step(), nan, "a",
                       "root mean square over steps and nodes of a step's node displacement relative to the "
                       "imposed flow (what run.displacement bounds)");
+  if (gap_pairs_ > 0) {
+    sink.write_scalar(
+        "/results/steps/rms_gap_step", rms_gap_step(), nan, "a",
+        "root mean square over steps and near node pairs (gap below run.gap_range) of the change "
+        "of a pair's surface gap in one step, the imposed flow's normal displacement of the pair "
+        "added in quadrature (what run.gap_step bounds)");
+    sink.write_scalar("/results/steps/near_pairs", double(gap_pairs_) / double(accepted_), nan, "",
+                      "near node pairs per accepted step (those run.gap_step measures)");
+  }
   if (accepted_ > 0)
     sink.write_scalar("/results/steps/min_gap", min_gap_, nan, "a",
                       "smallest node surface gap at the end of an accepted step (negative: overlap)");

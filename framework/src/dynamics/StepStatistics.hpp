@@ -1,13 +1,15 @@
 // What the steps of a run were: accepted steps, rejected attempts by cause, the distribution of
 // the accepted step lengths (log-spaced histogram), and the smallest node gap seen at the end of
 // an accepted step, and the root mean square node displacement per step relative to the imposed
-// flow (what run.displacement bounds; docs/time_steps.md). Kept across --resume (save/restore), written to
+// flow (what run.displacement bounds; docs/time_steps.md), and with run.gap_step the rms gap change
+// of near node pairs per step (what it bounds). Kept across --resume (save/restore), written to
 // the log, to /results/steps in the result file and so to `fldsim summary`.
 #pragma once
 
 #include <array>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "dynamics/StepControl.hpp"
@@ -38,6 +40,20 @@ class StepStatistics {
   // sqrt of the mean over steps of the mean square node step, a (0 before any step; a checkpoint
   // of an earlier build leaves the steps before it out).
   double rms_node_step() const;
+  // With run.gap_step: one step's near pairs, the sum over them of the squared gap change plus
+  // the imposed flow's (PairGapSteps), and their count; and the root mean square over all of
+  // them, a (0 without any): what run.gap_step bounds.
+  void gap_steps(double sum_square, std::size_t pairs) {
+    gap_step_sum_ += sum_square;
+    gap_pairs_ += std::int64_t(pairs);
+  }
+  double rms_gap_step() const;
+  // Saved after the rest (StepLoop::save_state), so that earlier checkpoints keep their layout.
+  std::pair<double, double> gap_step_state() const { return {gap_step_sum_, double(gap_pairs_)}; }
+  void restore_gap_steps(double sum_square, double pairs) {
+    gap_step_sum_ = sum_square;
+    gap_pairs_ = std::int64_t(pairs);
+  }
 
   // One line for the log; times divided by time_scale and shown in `unit`.
   std::string text(double time_scale, const std::string& unit) const;
@@ -57,6 +73,8 @@ class StepStatistics {
   double min_gap_ = 1e300, min_gap_time_ = 0.0;
   double node_step_sum_ = 0.0;  // sum over steps of the mean square node step, a^2
   std::int64_t node_steps_ = 0;
+  double gap_step_sum_ = 0.0;  // sum over steps and near pairs of the squared gap change, a^2
+  std::int64_t gap_pairs_ = 0;
 };
 
 }  // namespace fldsim

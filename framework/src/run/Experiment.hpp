@@ -54,6 +54,8 @@ struct Experiment {
   bool dt_auto = false;             // run.dt: auto (adaptive steps)
   double dt_max = 0.0, dt_min = 0.0, tolerance = 1e-3, reject_at = 10.0, max_overlap = 0.1;
   double displacement = 0.0;  // run.displacement, a (0: no bound)
+  double gap_step = 0.0;      // run.gap_step, a (0: no bound)
+  double gap_range = 0.01;    // run.gap_range, a
   bool error_control = true;  // dt: auto with run.tolerance (or without run.displacement)
   int refine = 0;             // every frame in at least 2^refine steps
   std::string time_unit;      // paper | diffusive | strain

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "config/NumberText.hpp"
+#include "dynamics/PairGapStep.hpp"
 
 namespace fldsim {
 namespace {
@@ -41,7 +42,8 @@ StepLoop::StepLoop(System& sys, TimeIntegrator& integrator, VelocityEvaluator& e
   if (control.adaptive && control.error_control && integrator.error_order() <= 0.0)
     throw Error(
         "adaptive time steps with error control need an embedded error estimate: " + integrator.describe() +
-        " has none (use drift: midpoint for Brownian runs, rk3 for kT = 0, or only run.displacement)");
+        " has none (use drift: midpoint for Brownian runs, rk3 for kT = 0, or only run.displacement or "
+        "run.gap_step)");
   integrator_.set_stress_stage(
       [this](StressStage stage, const System& s, VelocityEvaluator& ev) { stress_.sample(stage, s, ev); });
 }
@@ -102,7 +104,7 @@ void StepLoop::step(ResultSink& sink) {
       gap_ = a.min_gap;
       const double node_step = integrator_.mean_square_node_step(sys_);
       stats_.accepted(interval.duration(), a.min_gap, sys_.time(), node_step);
-      control_.accept(ratio, node_step);
+      control_.accept(ratio, bound_measure(interval.duration(), node_step));
       continue;
     }
     integrator_.reject(sys_, evaluator_);
@@ -153,6 +155,18 @@ void StepLoop::step(ResultSink& sink) {
   observer_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// What the step bound measures of the step just accepted: the mean square node step, or with
+// run.gap_step the near pairs' mean square gap change plus the imposed flow's (PairGapStep.hpp;
+// 0 when none was near: the bound's averaged rate then keeps its value).
+double StepLoop::bound_measure(double dt, double mean_square_node_step) {
+  const StepControlSettings& c = control_.settings();
+  if (c.bound != StepBound::NearPairGap) return mean_square_node_step;
+  const PairGapSteps g =
+      near_pair_gap_steps(sys_, evaluator_.pairs(), integrator_.step_relative_velocity(), dt, c.gap_range);
+  stats_.gap_steps(g.sum_square + g.flow_square, g.pairs);
+  return g.mean_square();
+}
+
 // Overlaps are reported when they are new records (so a run with many shallow contacts does not
 // flood the log); the count of frames ending with an overlap is in the final step summary.
 void StepLoop::warn_overlap(double gap, const NodePair* pair) {
@@ -167,13 +181,17 @@ void StepLoop::warn_overlap(double gap, const NodePair* pair) {
 }
 
 // {proposal, overlap frames, deepest warned, statistics..., displacement bound (0: none), its
-// rate}; an earlier build's state ends with its shorter statistics.
+// rate, near pairs' gap-step sum and count}; an earlier build's state ends before the gap steps,
+// or with its shorter statistics.
 std::vector<double> StepLoop::save_state() const {
   std::vector<double> v{control_.proposal(), double(overlap_frames_), deepest_warned_};
   const std::vector<double> s = stats_.save();
   v.insert(v.end(), s.begin(), s.end());
   v.push_back(std::isfinite(control_.displacement_bound()) ? control_.displacement_bound() : 0.0);
   v.push_back(control_.displacement_rate());
+  const auto [gap_sum, gap_pairs] = stats_.gap_step_state();
+  v.push_back(gap_sum);
+  v.push_back(gap_pairs);
   return v;
 }
 
@@ -185,14 +203,17 @@ void StepLoop::restore_state(const std::vector<double>& state) {
     if (!std::isfinite(x) || std::abs(x) > 0x1p62)
       throw Error("step state in the checkpoint holds an impossible value (" + log_number(x) + ")");
   if (!(state[0] > 0.0)) throw Error("step state in the checkpoint holds a step proposal <= 0");
-  const bool current = state.size() == 3 + StepStatistics::kSavedValues + 2;
-  if (current)
-    control_.restore(state[0], state[state.size() - 2], state.back());
+  const std::size_t bounded = 3 + StepStatistics::kSavedValues + 2;
+  const bool with_gaps = state.size() == bounded + 2, with_bound = with_gaps || state.size() == bounded;
+  if (with_bound)
+    control_.restore(state[0], state[bounded - 2], state[bounded - 1]);
   else
     control_.restore(state[0]);
   overlap_frames_ = std::int64_t(state[1]);
   deepest_warned_ = state[2];
-  stats_.restore(std::vector<double>(state.begin() + 3, state.end() - (current ? 2 : 0)));
+  stats_.restore(
+      std::vector<double>(state.begin() + 3, with_bound ? state.begin() + bounded - 2 : state.end()));
+  if (with_gaps) stats_.restore_gap_steps(state[bounded], state[bounded + 1]);
 }
 
 }  // namespace fldsim

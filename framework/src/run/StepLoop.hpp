@@ -86,6 +86,7 @@ class StepLoop {
 
  private:
   void warn_overlap(double gap, const NodePair* pair);
+  double bound_measure(double dt, double mean_square_node_step);
 
   System& sys_;
   TimeIntegrator& integrator_;
