@@ -97,7 +97,7 @@ ParamSchema run_schema() {
        "pairs (gap below gap_range), the imposed flow's normal displacement of each pair added, predicted "
        "from the past steps: what the repulsion feels. Lubrication sets near pairs' gap changes alike at any "
        "volume fraction, so one value fits every phi, where the node step does not: 0.0048 passes the exact "
-       "equilibrium at phi 0.3 and 0.5 with 4e-4 steps and stays within 1 SE of dt 1e-4 at Pe 10 and 1000 "
+       "equilibrium at phi 0.3 and 0.5 with 4e-4 steps and stays within 2 SE of dt 1e-4 at Pe 10 and 1000 "
        "(docs/time_steps.md, \"The pair-gap bound\"). Used like run.displacement (alone: equal steps; with "
        "tolerance: the shorter), instead of it: set one of the two; 0 = none")
       .at_least(0.0);
