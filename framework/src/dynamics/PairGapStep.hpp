@@ -6,8 +6,8 @@
 // Pe that jump is set by the lubrication between the two nodes, the same at any volume fraction
 // for a given step, where the rms node step is not (docs/time_steps.md, "The pair-gap bound").
 // Under strong shear lubrication keeps the actual gap changes small even when the flow carries
-// pairs into contact from outside the range faster than a step resolves, and the structure then
-// shifts with the step (N = 125, phi 0.5, Pe 1000: twice the near pairs at 0.03 strain), so the
+// pairs into contact from outside the range faster than a step resolves (N = 125, phi 0.5, Pe 1000:
+// 3e-2 strain steps, overlaps to 0.07 a, where 8e-3 strain stays within 4e-4 a), so the
 // flow's own normal displacement of each near pair, gammadot dt r_x r_y / |r|, counts too, as the
 // node bound counts what the flow moves a touching neighbour.
 #pragma once

@@ -57,8 +57,10 @@
 //    nearer than run.gap_range, plus the imposed flow's normal displacement of each
 //    (PairGapStep.hpp). Near contact the gap changes are set by lubrication, so a given step
 //    changes them alike at phi 0.3 and 0.5 (rms 0.0046 and 0.0045 a at 4e-4 a^2/D0, N = 1000),
-//    where its rms node step differs by 1.6x (0.033 and 0.021 a): one l gives both phi the step
-//    their equilibrium structure allows (docs/time_steps.md, "The pair-gap bound").
+//    where its rms node step differs by 1.6x (0.033 and 0.021 a). It guards the repulsion's contact
+//    bias (phi 0.5's edge: 0.0048 takes 4e-4 and passes the oracle), not the lubrication taper's,
+//    which follows the node step (phi 0.3's edge: there 0.0048's 3.7e-4 failed one of four sets;
+//    docs/time_steps.md, "The pair-gap bound").
 #pragma once
 
 #include <cstdint>
