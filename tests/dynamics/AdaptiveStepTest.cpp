@@ -170,6 +170,37 @@ TEST(StepControl, DisplacementBoundTakesTheLongestPieceBelowIt) {
   expect_settled(bounded_steps(0.0, 0.64, 0.64 * 0.21 * 0.21, 2.0, 8), 1.0 / 5.0, 12);
 }
 
+// Both bounds (run.displacement and run.gap_step): each measure keeps its own averaged rate, and
+// the shorter of the two bounds is taken, whichever it is. Node steps m = 6 h and gap steps
+// g = 4 h (diffusion): node bound at h* = 0.45 (thirds alone), gap bound at 0.3 (quarters alone).
+std::vector<double> doubly_bounded_steps(double node_h_star, double gap_h_star, int frames) {
+  StepControlSettings s;
+  s.adaptive = true;
+  s.error_control = false;
+  s.frame = 1.0;
+  s.displacement = node_h_star > 0.0 ? std::sqrt(6.0 * node_h_star) : 0.0;
+  s.gap_step = gap_h_star > 0.0 ? std::sqrt(4.0 * gap_h_star) : 0.0;
+  StepControl c(s);
+  std::vector<double> taken;
+  for (int f = 0; f < frames; ++f) {
+    c.begin_frame(std::uint64_t(f));
+    while (!c.frame_done()) {
+      const double h = c.next_duration();
+      taken.push_back(h);
+      c.accept(0.0, 6.0 * h, 4.0 * h);
+    }
+  }
+  return taken;
+}
+
+TEST(StepControl, TwoBoundsTakeTheShorter) {
+  expect_settled(doubly_bounded_steps(0.45, 0.0, 8), 1.0 / 3.0, 12);   // node bound alone: thirds
+  expect_settled(doubly_bounded_steps(0.0, 0.3, 8), 1.0 / 4.0, 12);    // gap bound alone: quarters
+  expect_settled(doubly_bounded_steps(0.45, 0.3, 8), 1.0 / 4.0, 12);   // both: the gap bound's
+  expect_settled(doubly_bounded_steps(0.3, 0.45, 8), 1.0 / 4.0, 12);   // both: the node bound's
+  expect_settled(doubly_bounded_steps(0.45, 0.45, 8), 1.0 / 3.0, 12);  // equal: either
+}
+
 // Each equal piece is a base interval of its own, keyed apart from every frame and every other
 // piece, drawn as one plain stream (no bridge terms); a guard rejection halves the piece and is
 // bridged inside it.

@@ -143,10 +143,9 @@ TEST(PairGapBound, MeasuresTheRelativeDiffusionOfNearPairs) {
   control.adaptive = true;
   control.error_control = false;
   control.frame = frame;
-  control.bound = StepBound::NearPairGap;
   control.gap_range = range;
   const double h_star = 0.4 * frame;
-  control.displacement = std::sqrt(4.0 * h_star);
+  control.gap_step = std::sqrt(4.0 * h_star);
   EulerMaruyama em(91, true, DriftScheme::Midpoint, n);
   std::vector<std::shared_ptr<Observer>> none;
   StepGuard guard;
@@ -177,16 +176,16 @@ TEST(PairGapBound, MeasuresTheRelativeDiffusionOfNearPairs) {
   EXPECT_NEAR(ms.mean, 4.0 * h, 3.0 * ms.se);
   EXPECT_NEAR(st.rms_gap_step(), std::sqrt(sum / pairs), 1e-15);
 
-  // The checkpoint's step state: the gap steps come after the rest, so a state of the build
-  // before them (two values shorter) still restores the bound, its rate and the statistics.
+  // The checkpoint's step state: the gap step's rate and statistics come after the rest, so a state
+  // of the build before them (three values shorter) still restores the bound and the statistics.
   const std::vector<double> state = loop.save_state();
   StepLoop copy(*scene.system, em, *scene.evaluator, scene.list, none, info, true, true, control, guard);
   copy.restore_state(state);
   EXPECT_EQ(copy.save_state(), state);
-  std::vector<double> earlier(state.begin(), state.end() - 2);
+  std::vector<double> earlier(state.begin(), state.end() - 3);
   StepLoop old(*scene.system, em, *scene.evaluator, scene.list, none, info, true, true, control, guard);
   old.restore_state(earlier);
-  earlier.insert(earlier.end(), {0.0, 0.0});
+  earlier.insert(earlier.end(), {0.0, 0.0, 0.0});
   EXPECT_EQ(old.save_state(), earlier);
 }
 

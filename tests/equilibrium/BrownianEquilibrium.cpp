@@ -100,8 +100,8 @@ BrownianEquilibrium run_brownian(const EquilibriumScene& scene, const BrownianOp
   control.tolerance = opt.tolerance;
   control.reject_at = opt.reject_at;
   control.order = integrator.error_order();
-  control.displacement = opt.gap_step > 0.0 ? opt.gap_step : opt.displacement;
-  control.bound = opt.gap_step > 0.0 ? StepBound::NearPairGap : StepBound::NodeStep;
+  control.displacement = opt.displacement;
+  control.gap_step = opt.gap_step;
   control.gap_range = opt.gap_range;
   control.error_control = opt.error_control;
   StepGuard guard;

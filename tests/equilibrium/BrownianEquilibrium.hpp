@@ -49,7 +49,8 @@ struct BrownianOptions {
   // run.displacement (a; 0 = none); with error_control false it is the only rule (run.displacement
   // without run.tolerance).
   double displacement = 0.0;
-  // run.gap_step instead (a; 0 = none): the bound on the rms gap change of pairs nearer than gap_range.
+  // run.gap_step (a; 0 = none): the bound on the rms gap change of pairs nearer than gap_range (with
+  // displacement too, the shorter of the two).
   double gap_step = 0.0, gap_range = 0.01;
   bool error_control = true;
   RejectedNoise rejected = RejectedNoise::Bridge;  // Redraw: the broken variant, for tests

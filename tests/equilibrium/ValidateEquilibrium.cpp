@@ -19,7 +19,8 @@
 // (homonuclear c/a 0.2, phi 0.5, N 1000, dt: auto at tolerance 3e-2 with the frame at the measured
 // 8e-4) and auto_long_frame_phi05 (the same with a 1.6e-3 frame: must fail), bound_phi05 and bound_phi03
 // (the displacement bound 0.022 a alone, frame 1.6e-3) and bound_long_phi05 (0.045 a: must fail), gap_phi05
-// and gap_phi03 (the pair-gap bound 0.0048 a alone, frame 1.6e-3) and gap_long_phi03 (0.009 a: must fail).
+// and gap_phi03 (the pair-gap bound 0.0048 a alone, frame 1.6e-3) and gap_long_phi03 (0.009 a: must fail),
+// both_phi05 and both_phi03 (the node bound 0.028 a and the gap bound 0.0048 a, the shorter taken).
 // Keys: n, phi, dt, duration, equilibrate, blocks, every, seed, hydro, hydro_params, force_params, drift
 // (midpoint|none), integrator (euler_maruyama|rk3: the paper's RK3 with frozen Brownian forces; fixed dt),
 // oracle_sweeps, oracle_blocks, stress_every, max_overlap, adaptive (0|1), tolerance, reject_at,
@@ -268,6 +269,16 @@ std::map<std::string, Case> cases() {
   gap.bd.gap_step = 0.009;
   gap.expect_pass = false;
   c["gap_long_phi03"] = gap;
+  // Both bounds, the shorter taken (docs/time_steps.md, "Both bounds"): the node bound at 0.028 a
+  // guards the lubrication taper's bias (phi 0.3: 2.7e-4), the gap bound at 0.0048 a the contact
+  // bias (phi 0.5: 4e-4).
+  Case both = gap;
+  both.bd.displacement = 0.028;
+  both.bd.gap_step = 0.0048;
+  both.expect_pass = true;
+  c["both_phi03"] = both;
+  both.scene.phi = 0.5;
+  c["both_phi05"] = both;
   return c;
 }
 
@@ -368,11 +379,13 @@ bool run_case(const std::string& name, const Case& c) {
                     ? "auto (" +
                           (c.bd.error_control ? "tolerance " + std::to_string(c.bd.tolerance) + " a" : "") +
                           (c.bd.error_control && (c.bd.displacement > 0 || c.bd.gap_step > 0) ? ", " : "") +
+                          (c.bd.displacement > 0
+                               ? "rms node step <= " + std::to_string(c.bd.displacement) + " a"
+                               : "") +
+                          (c.bd.displacement > 0 && c.bd.gap_step > 0 ? ", " : "") +
                           (c.bd.gap_step > 0
                                ? "rms gap step of pairs nearer than " + std::to_string(c.bd.gap_range) +
                                      " a <= " + std::to_string(c.bd.gap_step) + " a"
-                           : c.bd.displacement > 0
-                               ? "rms node step <= " + std::to_string(c.bd.displacement) + " a"
                                : "") +
                           "), frame "
                     : "")

@@ -315,13 +315,6 @@ TEST_F(Corpus, CoreKeys) {
   cases.push_back(check_case("run.gap_step with a fixed step",
                              edited([](YAML::Node& r) { r["run"]["gap_step"] = 0.005; }),
                              {at_key("run.gap_step") + "only with dt: auto"}));
-  cases.push_back(check_case("two step bounds", edited([](YAML::Node& r) {
-                               r["run"]["dt"] = "auto";
-                               r["run"]["dt_max"] = 0.01;
-                               r["run"]["displacement"] = 0.03;
-                               r["run"]["gap_step"] = 0.005;
-                             }),
-                             {at_key("run.gap_step") + "set one step bound"}));
   cases.push_back(check_case("run.gap_range without run.gap_step", edited([](YAML::Node& r) {
                                r["run"]["dt"] = "auto";
                                r["run"]["dt_max"] = 0.01;

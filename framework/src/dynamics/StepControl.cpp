@@ -28,10 +28,11 @@ StepControl::StepControl(const StepControlSettings& settings) : settings_(settin
     throw Error("step control: refine must be in 0.." + std::to_string(NoiseInterval::kMaxDepth));
   if (settings_.dt_min <= 0.0) settings_.dt_min = std::ldexp(settings_.frame, -24);
   settings_.dt_min = std::min(settings_.dt_min, std::ldexp(settings_.frame, -settings_.refine));
-  if (settings_.displacement < 0.0 || !std::isfinite(settings_.displacement))
-    throw Error("step control: the displacement bound must be >= 0 and finite");
-  if (settings_.adaptive && !settings_.error_control && settings_.displacement == 0.0)
-    throw Error("step control: adaptive steps without error control need a displacement bound");
+  if (!(settings_.displacement >= 0.0) || !std::isfinite(settings_.displacement) ||
+      !(settings_.gap_step >= 0.0) || !std::isfinite(settings_.gap_step))
+    throw Error("step control: the displacement and gap bounds must be >= 0 and finite");
+  if (settings_.adaptive && !settings_.error_control && !bounded())
+    throw Error("step control: adaptive steps without error control need a displacement or gap bound");
   if (!(settings_.displacement_order > 0.0)) throw Error("step control: displacement_order must be > 0");
   h_ = settings_.frame;
   hd_ = INFINITY;
@@ -43,12 +44,14 @@ StepControl::StepControl(const StepControlSettings& settings) : settings_(settin
   h_ = std::clamp(h_, settings_.dt_min, settings_.frame);
 }
 
-void StepControl::restore(double proposal, double displacement_bound, double displacement_rate) {
+void StepControl::restore(double proposal, double displacement_bound, double displacement_rate,
+                          double gap_rate) {
   if (!settings_.adaptive) return;
   h_ = std::clamp(proposal, settings_.dt_min, settings_.frame);
   if (bounded() && displacement_bound > 0.0) {
     hd_ = std::clamp(displacement_bound, settings_.dt_min, settings_.frame);
     rate_ = std::max(displacement_rate, 0.0);
+    gap_rate_ = std::max(gap_rate, 0.0);
   }
 }
 
@@ -108,7 +111,7 @@ void StepControl::settle_depth(int minimum_depth, bool shorter) {
   interval_.index = position_ >> (NoiseInterval::kMaxDepth - depth);
 }
 
-void StepControl::accept(double error_ratio, double mean_square_step) {
+void StepControl::accept(double error_ratio, double mean_square_step, double mean_square_gap_step) {
   const double taken = interval_.duration();
   if (settings_.adaptive) {
     // Without error control the proposal only remembers the guard's rejections and grows back.
@@ -119,12 +122,18 @@ void StepControl::accept(double error_ratio, double mean_square_step) {
     h_ = std::clamp(h, settings_.dt_min, settings_.frame);
     if (bounded()) {
       const double p = settings_.displacement_order;
-      const double l2 = settings_.displacement * settings_.displacement;
-      if (mean_square_step > 0.0 && std::isfinite(mean_square_step)) {
-        const double rate = mean_square_step / std::pow(taken, p);
-        rate_ = rate_ > 0.0 ? rate_ + 0.25 * (rate - rate_) : rate;
-      }
-      const double bound = rate_ > 0.0 ? std::pow(l2 / rate_, 1.0 / p) : taken * settings_.grow_max;
+      // Each bound's step from its own averaged rate; the shorter of the two is taken.
+      double bound = INFINITY;
+      const auto limit = [&](double l, double mean_square, double& rate) {
+        if (!(l > 0.0)) return;
+        if (mean_square > 0.0 && std::isfinite(mean_square)) {
+          const double r = mean_square / std::pow(taken, p);
+          rate = rate > 0.0 ? rate + 0.25 * (r - rate) : r;
+        }
+        bound = std::min(bound, rate > 0.0 ? std::pow(l * l / rate, 1.0 / p) : taken * settings_.grow_max);
+      };
+      limit(settings_.displacement, mean_square_step, rate_);
+      limit(settings_.gap_step, mean_square_gap_step, gap_rate_);
       // Growth relative to the longer of the piece and the bound, so that a piece cut short by the
       // grid or a retry does not drag the bound down.
       const double reach = std::max(taken, std::min(hd_, settings_.frame));

@@ -52,15 +52,15 @@
 //    instead of 2, and the noise costs what a fixed step's does (a depth-d dyadic piece draws
 //    d + 1 streams: +6-14 % per step at N = 1000, depths 1-3). Should the bound fall below 4/5
 //    of a piece within the frame, the piece is halved as a rejected one would be.
-//  - Pair-gap bound (run.gap_step = l, StepBound::NearPairGap): the same rule, prediction and
-//    pieces, on another measure: the mean square change of the surface gap of the node pairs
-//    nearer than run.gap_range, plus the imposed flow's normal displacement of each
-//    (PairGapStep.hpp). Near contact the gap changes are set by lubrication, so a given step
-//    changes them alike at phi 0.3 and 0.5 (rms 0.0046 and 0.0045 a at 4e-4 a^2/D0, N = 1000),
-//    where its rms node step differs by 1.6x (0.033 and 0.021 a). It guards the repulsion's contact
-//    bias (phi 0.5's edge: 0.0048 takes 4e-4 and passes the oracle), not the lubrication taper's,
-//    which follows the node step (phi 0.3's edge: there 0.0048's 3.7e-4 failed one of four sets;
-//    docs/time_steps.md, "The pair-gap bound").
+//  - Pair-gap bound (run.gap_step = l): the same rule, prediction and pieces on another measure,
+//    the mean square change of the surface gap of the node pairs nearer than run.gap_range, plus
+//    the imposed flow's normal displacement of each (PairGapStep.hpp); with run.displacement too,
+//    each measure keeps its own averaged rate and the shorter of the two bounds is taken. Near contact the
+//    gap changes are set by lubrication, so a given step changes them alike at phi 0.3 and 0.5 (rms 0.0046
+//    and 0.0045 a at 4e-4 a^2/D0, N = 1000), where its rms node step differs by 1.6x (0.033 and 0.021 a). It
+//    guards the repulsion's contact bias (phi 0.5's edge: 0.0048 takes 4e-4 and passes the oracle), not the
+//    lubrication taper's, which follows the node step (phi 0.3's edge: there 0.0048's 3.7e-4 failed one of
+//    four sets; docs/time_steps.md, "The pair-gap bound"): the two together guard both.
 #pragma once
 
 #include <cstdint>
@@ -69,12 +69,6 @@
 
 namespace fldsim {
 
-// What the step bound (run.displacement or run.gap_step) measures of a step.
-enum class StepBound {
-  NodeStep,    // rms node displacement relative to the imposed flow (TimeIntegrator::mean_square_node_step)
-  NearPairGap  // rms change of the surface gap of node pairs nearer than gap_range (PairGapStep.hpp)
-};
-
 struct StepControlSettings {
   bool adaptive = false;
   double frame = 0.0;         // run.dt, or run.dt_max for `dt: auto` (internal time units)
@@ -82,9 +76,9 @@ struct StepControlSettings {
   int refine = 0;             // every step at most frame / 2^refine
   double tolerance = 1e-3;    // local error target, a (adaptive only): the controller aims at it
   bool error_control = true;  // adaptive: the embedded estimate's controller acts (run.tolerance)
-  double displacement = 0.0;  // adaptive: the step bound l, a (0: none), on what `bound` measures
-  StepBound bound = StepBound::NodeStep;
-  double gap_range = 0.01;          // NearPairGap: pairs with a surface gap below this, a
+  double displacement = 0.0;  // adaptive: bound on the rms node step (run.displacement), a (0: none)
+  double gap_step = 0.0;      // adaptive: bound on the near pairs' rms gap step (run.gap_step), a (0: none)
+  double gap_range = 0.01;    // gap_step: pairs with a surface gap below this, a
   double displacement_order = 1.0;  // p of the prediction: 1 with Brownian motion, 2 without
   double reject_at = 10.0;          // an attempt whose estimate exceeds reject_at * tolerance is rejected
   double order = 1.5;  // the error estimate scales as h^order: 1.5 Euler-Maruyama/midpoint, 3 RK3
@@ -113,33 +107,40 @@ class StepControl {
   bool frame_done() const { return done_; }
 
   // error_ratio: estimate / tolerance (ignored in fixed-step mode and without error control);
-  // mean_square_step: what the bound measures of the step (StepBound), a^2: the mean over nodes
-  // of the squared displacement relative to the imposed flow, or over near pairs of the squared
-  // gap change (0: nothing measured, the averaged rate keeps its value).
-  void accept(double error_ratio, double mean_square_step = 0.0);
+  // mean_square_step: the mean over nodes of the squared displacement of the step relative to the
+  // imposed flow, a^2 (TimeIntegrator::mean_square_node_step; the displacement bound's measure);
+  // mean_square_gap_step: PairGapSteps::mean_square() (the gap bound's). 0: nothing measured, the
+  // averaged rate keeps its value.
+  void accept(double error_ratio, double mean_square_step = 0.0, double mean_square_gap_step = 0.0);
   // Returns false when the retry would be shorter than dt_min (the run cannot go on).
   bool reject(Rejection why, double error_ratio);
 
   const StepControlSettings& settings() const { return settings_; }
-  // The adaptive proposal, the displacement bound (infinite without one) and its averaged rate
-  // m / h^p (0 before the first step), carried from frame to frame (the checkpoint keeps them).
+  // The adaptive proposal, the step bound (the shorter of the two; infinite without one) and each
+  // measure's averaged rate m / h^p (0 before the first step), carried from frame to frame (the
+  // checkpoint keeps them).
   double proposal() const { return h_; }
   double displacement_bound() const { return hd_; }
   double displacement_rate() const { return rate_; }
-  void restore(double proposal, double displacement_bound = 0.0, double displacement_rate = 0.0);
+  double gap_rate() const { return gap_rate_; }
+  void restore(double proposal, double displacement_bound = 0.0, double displacement_rate = 0.0,
+               double gap_rate = 0.0);
 
  private:
   static constexpr std::uint64_t kWhole = std::uint64_t(1) << NoiseInterval::kMaxDepth;
-  bool bounded() const { return settings_.adaptive && settings_.displacement > 0.0; }
+  bool bounded() const {
+    return settings_.adaptive && (settings_.displacement > 0.0 || settings_.gap_step > 0.0);
+  }
   bool equal_pieces() const { return bounded() && !settings_.error_control; }
   void begin_piece();
   void settle_depth(int minimum_depth, bool shorter);
   double factor(double error_ratio) const;
 
   StepControlSettings settings_;
-  double h_ = 0.0;     // proposal (fixed step: the frame)
-  double hd_ = 0.0;    // displacement bound on the step (infinite when there is none)
-  double rate_ = 0.0;  // m / h^p averaged over the last steps (0: no step yet)
+  double h_ = 0.0;         // proposal (fixed step: the frame)
+  double hd_ = 0.0;        // displacement bound on the step (infinite when there is none)
+  double rate_ = 0.0;      // node step: m / h^p averaged over the last steps (0: no step yet)
+  double gap_rate_ = 0.0;  // the same for the gap step
   bool done_ = true;
   std::uint64_t frame_index_ = 0;
   std::uint32_t pieces_ = 1, piece_ = 0;  // the frame's equal pieces, and the current one

@@ -125,8 +125,8 @@ SimulationSettings settings_of(const Experiment& ex, const UserTimeUnit& unit, T
   s.control.tolerance = ex.tolerance;
   s.control.reject_at = ex.reject_at;
   s.control.error_control = ex.error_control;
-  s.control.displacement = ex.gap_step > 0.0 ? ex.gap_step : ex.displacement;
-  s.control.bound = ex.gap_step > 0.0 ? StepBound::NearPairGap : StepBound::NodeStep;
+  s.control.displacement = ex.displacement;
+  s.control.gap_step = ex.gap_step;
   s.control.gap_range = ex.gap_range;
   s.control.refine = ex.refine;
   s.guard.max_overlap = ex.max_overlap;
@@ -188,7 +188,7 @@ Simulation::Simulation(SimulationParts parts, SimulationSettings settings, Resul
   // an overlap when a rebuild lists it already deep, which no shorter step can undo.
   if (range_ <= 0.0) settings_.guard.max_overlap = std::numeric_limits<double>::infinity();
   // run.gap_step measures the pairs nearer than gap_range: the list must hold them.
-  if (settings_.control.bound == StepBound::NearPairGap && settings_.control.displacement > 0.0) {
+  if (settings_.control.adaptive && settings_.control.gap_step > 0.0) {
     double largest = 0.0;
     for (const Node& n : sys.shape().nodes()) largest = std::max(largest, n.radius);
     range_ = std::max(range_, 2.0 * largest + settings_.control.gap_range);
@@ -229,13 +229,10 @@ Simulation::Simulation(SimulationParts parts, SimulationSettings settings, Resul
   if (control.adaptive) {
     log_ << "dt: auto (adaptive, ";
     if (control.error_control) log_ << "local error ~ " << control.tolerance << " a, ";
-    if (control.displacement > 0.0) {
-      if (control.bound == StepBound::NearPairGap)
-        log_ << "rms gap step of pairs nearer than " << control.gap_range << " a <= " << control.displacement
-             << " a, ";
-      else
-        log_ << "rms node step <= " << control.displacement << " a, ";
-    }
+    if (control.displacement > 0.0) log_ << "rms node step <= " << control.displacement << " a, ";
+    if (control.gap_step > 0.0)
+      log_ << "rms gap step of pairs nearer than " << control.gap_range << " a <= " << control.gap_step
+           << " a, ";
     log_ << "steps: " << (control.error_control ? "dyadic" : "equal")
          << " pieces of dt_max = " << settings_.user_dt << " " << settings_.time_unit << "), "
          << settings_.total_steps << " frames of dt_max";

@@ -104,7 +104,7 @@ void StepLoop::step(ResultSink& sink) {
       gap_ = a.min_gap;
       const double node_step = integrator_.mean_square_node_step(sys_);
       stats_.accepted(interval.duration(), a.min_gap, sys_.time(), node_step);
-      control_.accept(ratio, bound_measure(interval.duration(), node_step));
+      control_.accept(ratio, node_step, gap_measure(interval.duration()));
       continue;
     }
     integrator_.reject(sys_, evaluator_);
@@ -155,12 +155,12 @@ void StepLoop::step(ResultSink& sink) {
   observer_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// What the step bound measures of the step just accepted: the mean square node step, or with
-// run.gap_step the near pairs' mean square gap change plus the imposed flow's (PairGapStep.hpp;
-// 0 when none was near: the bound's averaged rate then keeps its value).
-double StepLoop::bound_measure(double dt, double mean_square_node_step) {
+// With run.gap_step, what it measures of the step just accepted: the near pairs' mean square gap
+// change plus the imposed flow's (PairGapStep.hpp; 0 when none was near, and the bound's averaged
+// rate then keeps its value). 0 without it.
+double StepLoop::gap_measure(double dt) {
   const StepControlSettings& c = control_.settings();
-  if (c.bound != StepBound::NearPairGap) return mean_square_node_step;
+  if (!(c.adaptive && c.gap_step > 0.0)) return 0.0;
   const PairGapSteps g =
       near_pair_gap_steps(sys_, evaluator_.pairs(), integrator_.step_relative_velocity(), dt, c.gap_range);
   stats_.gap_steps(g.sum_square + g.flow_square, g.pairs);
@@ -180,15 +180,16 @@ void StepLoop::warn_overlap(double gap, const NodePair* pair) {
         << (first ? " (further overlaps are reported when deeper)" : "") << "\n";
 }
 
-// {proposal, overlap frames, deepest warned, statistics..., displacement bound (0: none), its
-// rate, near pairs' gap-step sum and count}; an earlier build's state ends before the gap steps,
-// or with its shorter statistics.
+// {proposal, overlap frames, deepest warned, statistics..., step bound (0: none), the node step's
+// rate, the gap step's rate, the near pairs' gap-step sum and count}; an earlier build's state ends
+// after the node step's rate, or with its shorter statistics.
 std::vector<double> StepLoop::save_state() const {
   std::vector<double> v{control_.proposal(), double(overlap_frames_), deepest_warned_};
   const std::vector<double> s = stats_.save();
   v.insert(v.end(), s.begin(), s.end());
   v.push_back(std::isfinite(control_.displacement_bound()) ? control_.displacement_bound() : 0.0);
   v.push_back(control_.displacement_rate());
+  v.push_back(control_.gap_rate());
   const auto [gap_sum, gap_pairs] = stats_.gap_step_state();
   v.push_back(gap_sum);
   v.push_back(gap_pairs);
@@ -204,16 +205,16 @@ void StepLoop::restore_state(const std::vector<double>& state) {
       throw Error("step state in the checkpoint holds an impossible value (" + log_number(x) + ")");
   if (!(state[0] > 0.0)) throw Error("step state in the checkpoint holds a step proposal <= 0");
   const std::size_t bounded = 3 + StepStatistics::kSavedValues + 2;
-  const bool with_gaps = state.size() == bounded + 2, with_bound = with_gaps || state.size() == bounded;
+  const bool with_gaps = state.size() == bounded + 3, with_bound = with_gaps || state.size() == bounded;
   if (with_bound)
-    control_.restore(state[0], state[bounded - 2], state[bounded - 1]);
+    control_.restore(state[0], state[bounded - 2], state[bounded - 1], with_gaps ? state[bounded] : 0.0);
   else
     control_.restore(state[0]);
   overlap_frames_ = std::int64_t(state[1]);
   deepest_warned_ = state[2];
   stats_.restore(
       std::vector<double>(state.begin() + 3, with_bound ? state.begin() + bounded - 2 : state.end()));
-  if (with_gaps) stats_.restore_gap_steps(state[bounded], state[bounded + 1]);
+  if (with_gaps) stats_.restore_gap_steps(state[bounded + 1], state[bounded + 2]);
 }
 
 }  // namespace fldsim

@@ -86,7 +86,7 @@ class StepLoop {
 
  private:
   void warn_overlap(double gap, const NodePair* pair);
-  double bound_measure(double dt, double mean_square_node_step);
+  double gap_measure(double dt);
 
   System& sys_;
   TimeIntegrator& integrator_;
