@@ -176,12 +176,21 @@ TEST(PairGapBound, MeasuresTheRelativeDiffusionOfNearPairs) {
   EXPECT_NEAR(ms.mean, 4.0 * h, 3.0 * ms.se);
   EXPECT_NEAR(st.rms_gap_step(), std::sqrt(sum / pairs), 1e-15);
 
-  // The checkpoint's step state: the gap step's rate and statistics come after the rest, so a state
-  // of the build before them (three values shorter) still restores the bound and the statistics.
+  // The checkpoint's step state: the gap steps and the gap step's rate come after the rest, so the
+  // states of earlier builds restore: a34c4bc's (no gap rate of its own: its one rate was the
+  // active bound's, here the gap bound's) to the same state, and the one before the gap steps
+  // (three values shorter) with the gap step's rate and statistics at zero.
   const std::vector<double> state = loop.save_state();
+  ASSERT_GT(state.back(), 0.0);             // the gap step's rate
+  ASSERT_EQ(state[state.size() - 4], 0.0);  // the node step's: no node bound
   StepLoop copy(*scene.system, em, *scene.evaluator, scene.list, none, info, true, true, control, guard);
   copy.restore_state(state);
   EXPECT_EQ(copy.save_state(), state);
+  std::vector<double> a34c4bc(state.begin(), state.end() - 1);
+  a34c4bc[a34c4bc.size() - 3] = state.back();
+  StepLoop previous(*scene.system, em, *scene.evaluator, scene.list, none, info, true, true, control, guard);
+  previous.restore_state(a34c4bc);
+  EXPECT_EQ(previous.save_state(), state);
   std::vector<double> earlier(state.begin(), state.end() - 3);
   StepLoop old(*scene.system, em, *scene.evaluator, scene.list, none, info, true, true, control, guard);
   old.restore_state(earlier);

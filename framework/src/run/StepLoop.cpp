@@ -4,6 +4,7 @@
 #include <cmath>
 #include <ostream>
 #include <string>
+#include <utility>
 
 #include "config/NumberText.hpp"
 #include "dynamics/PairGapStep.hpp"
@@ -181,18 +182,19 @@ void StepLoop::warn_overlap(double gap, const NodePair* pair) {
 }
 
 // {proposal, overlap frames, deepest warned, statistics..., step bound (0: none), the node step's
-// rate, the gap step's rate, the near pairs' gap-step sum and count}; an earlier build's state ends
-// after the node step's rate, or with its shorter statistics.
+// rate, the near pairs' gap-step sum and count, the gap step's rate}. Earlier builds' states: without
+// the gap step's rate (a34c4bc: one rate, the active bound's, where run.displacement and
+// run.gap_step were exclusive), without the gap steps, or with shorter statistics.
 std::vector<double> StepLoop::save_state() const {
   std::vector<double> v{control_.proposal(), double(overlap_frames_), deepest_warned_};
   const std::vector<double> s = stats_.save();
   v.insert(v.end(), s.begin(), s.end());
   v.push_back(std::isfinite(control_.displacement_bound()) ? control_.displacement_bound() : 0.0);
   v.push_back(control_.displacement_rate());
-  v.push_back(control_.gap_rate());
   const auto [gap_sum, gap_pairs] = stats_.gap_step_state();
   v.push_back(gap_sum);
   v.push_back(gap_pairs);
+  v.push_back(control_.gap_rate());
   return v;
 }
 
@@ -205,16 +207,20 @@ void StepLoop::restore_state(const std::vector<double>& state) {
       throw Error("step state in the checkpoint holds an impossible value (" + log_number(x) + ")");
   if (!(state[0] > 0.0)) throw Error("step state in the checkpoint holds a step proposal <= 0");
   const std::size_t bounded = 3 + StepStatistics::kSavedValues + 2;
-  const bool with_gaps = state.size() == bounded + 3, with_bound = with_gaps || state.size() == bounded;
-  if (with_bound)
-    control_.restore(state[0], state[bounded - 2], state[bounded - 1], with_gaps ? state[bounded] : 0.0);
-  else
+  const std::size_t n = state.size();
+  const bool with_gaps = n == bounded + 2 || n == bounded + 3, with_bound = with_gaps || n == bounded;
+  if (with_bound) {
+    double node_rate = state[bounded - 1], gap_rate = n == bounded + 3 ? state[bounded + 2] : 0.0;
+    if (n == bounded + 2 && !(control_.settings().displacement > 0.0)) std::swap(node_rate, gap_rate);
+    control_.restore(state[0], state[bounded - 2], node_rate, gap_rate);
+  } else {
     control_.restore(state[0]);
+  }
   overlap_frames_ = std::int64_t(state[1]);
   deepest_warned_ = state[2];
   stats_.restore(
       std::vector<double>(state.begin() + 3, with_bound ? state.begin() + bounded - 2 : state.end()));
-  if (with_gaps) stats_.restore_gap_steps(state[bounded + 1], state[bounded + 2]);
+  if (with_gaps) stats_.restore_gap_steps(state[bounded], state[bounded + 1]);
 }
 
 }  // namespace fldsim
