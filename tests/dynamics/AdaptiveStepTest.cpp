@@ -130,16 +130,13 @@ TEST(StepControl, RefineSplitsEveryFrameOnItsOwnPath) {
   }
 }
 
-// The displacement bound alone (run.displacement) against a model of the mean square node step,
-// m(h) = A h + B h^2 (diffusion plus drift), predicted with exponent p: the frames settle on the
-// fewest equal pieces with m(h) <= l^2, never a longer piece.
-std::vector<double> bounded_steps(double A, double B, double l2, double order, int frames) {
-  StepControlSettings s;
+// The frames of a step bound alone (no error control, frame 1) whose step h measures node(h)
+// (the mean square node step) and gap(h) (the gap bound's measure).
+template <class NodeMeasure, class GapMeasure>
+std::vector<double> bounded_frames(StepControlSettings s, NodeMeasure node, GapMeasure gap, int frames) {
   s.adaptive = true;
   s.error_control = false;
   s.frame = 1.0;
-  s.displacement = std::sqrt(l2);
-  s.displacement_order = order;
   StepControl c(s);
   std::vector<double> taken;
   for (int f = 0; f < frames; ++f) {
@@ -147,10 +144,21 @@ std::vector<double> bounded_steps(double A, double B, double l2, double order, i
     while (!c.frame_done()) {
       const double h = c.next_duration();
       taken.push_back(h);
-      c.accept(0.0, A * h + B * h * h);
+      c.accept(0.0, node(h), gap(h));
     }
   }
   return taken;
+}
+
+// The displacement bound alone (run.displacement) against a model of the mean square node step,
+// m(h) = A h + B h^2 (diffusion plus drift), predicted with exponent p: the frames settle on the
+// fewest equal pieces with m(h) <= l^2, never a longer piece.
+std::vector<double> bounded_steps(double A, double B, double l2, double order, int frames) {
+  StepControlSettings s;
+  s.displacement = std::sqrt(l2);
+  s.displacement_order = order;
+  return bounded_frames(
+      s, [&](double h) { return A * h + B * h * h; }, [](double) { return 0.0; }, frames);
 }
 
 void expect_settled(const std::vector<double>& steps, double piece, std::size_t last) {
@@ -175,22 +183,10 @@ TEST(StepControl, DisplacementBoundTakesTheLongestPieceBelowIt) {
 // g = 4 h (diffusion): node bound at h* = 0.45 (thirds alone), gap bound at 0.3 (quarters alone).
 std::vector<double> doubly_bounded_steps(double node_h_star, double gap_h_star, int frames) {
   StepControlSettings s;
-  s.adaptive = true;
-  s.error_control = false;
-  s.frame = 1.0;
   s.displacement = node_h_star > 0.0 ? std::sqrt(6.0 * node_h_star) : 0.0;
   s.gap_step = gap_h_star > 0.0 ? std::sqrt(4.0 * gap_h_star) : 0.0;
-  StepControl c(s);
-  std::vector<double> taken;
-  for (int f = 0; f < frames; ++f) {
-    c.begin_frame(std::uint64_t(f));
-    while (!c.frame_done()) {
-      const double h = c.next_duration();
-      taken.push_back(h);
-      c.accept(0.0, 6.0 * h, 4.0 * h);
-    }
-  }
-  return taken;
+  return bounded_frames(
+      s, [](double h) { return 6.0 * h; }, [](double h) { return 4.0 * h; }, frames);
 }
 
 TEST(StepControl, TwoBoundsTakeTheShorter) {
