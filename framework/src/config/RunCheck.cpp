@@ -16,6 +16,7 @@
 #include "config/ConfigErrors.hpp"
 #include "config/NumberText.hpp"
 #include "config/ParamOrigins.hpp"
+#include "dynamics/PairGapStep.hpp"
 #include "fldsim/force.hpp"
 #include "fldsim/hydro.hpp"
 #include "fldsim/observer.hpp"
@@ -409,7 +410,7 @@ RunCheckReport check_run(const Experiment& ex, const PluginRegistry& registry, c
       for (std::size_t i = 0; i < forces.size(); ++i)
         if (forces[i]) range = std::max(range, forces[i]->range(*sys));
       if (ex.dt_auto && ex.gap_step > 0.0)  // the list holds the pairs run.gap_step measures
-        for (const Node& n : sys->shape().nodes()) range = std::max(range, 2.0 * n.radius + ex.gap_range);
+        range = std::max(range, pair_gap_list_range(sys->shape(), ex.gap_range));
     } catch (const std::exception& e) {
       problems.at_block(ex.hydro, e.what());
     }

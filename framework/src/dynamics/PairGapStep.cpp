@@ -48,4 +48,10 @@ PairGapSteps near_pair_gap_steps(const System& s, const NodePairList& pairs, con
   return out;
 }
 
+double pair_gap_list_range(const Shape& shape, double range) {
+  double largest = 0.0;
+  for (const Node& n : shape.nodes()) largest = std::max(largest, n.radius);
+  return 2.0 * largest + range;
+}
+
 }  // namespace fldsim

@@ -15,6 +15,7 @@
 #include <cstddef>
 
 #include "fldsim/neighbours.hpp"
+#include "fldsim/shape.hpp"
 #include "fldsim/system.hpp"
 
 namespace fldsim {
@@ -36,5 +37,9 @@ struct PairGapSteps {
 // past a neighbour changes the gap too).
 PairGapSteps near_pair_gap_steps(const System& s, const NodePairList& pairs, const double* relative_velocity,
                                  double dt, double range);
+
+// The neighbour-list range the bound needs: every node pair of gap below `range` listed, so the
+// largest node contact distance plus range (a). Used by the run and by `fldsim check`.
+double pair_gap_list_range(const Shape& shape, double range);
 
 }  // namespace fldsim

@@ -10,6 +10,7 @@
 #endif
 
 #include "config/NumberText.hpp"
+#include "dynamics/PairGapStep.hpp"
 #include "run/RunUnits.hpp"
 #include "run/StartConfiguration.hpp"
 
@@ -188,11 +189,8 @@ Simulation::Simulation(SimulationParts parts, SimulationSettings settings, Resul
   // an overlap when a rebuild lists it already deep, which no shorter step can undo.
   if (range_ <= 0.0) settings_.guard.max_overlap = std::numeric_limits<double>::infinity();
   // run.gap_step measures the pairs nearer than gap_range: the list must hold them.
-  if (settings_.control.adaptive && settings_.control.gap_step > 0.0) {
-    double largest = 0.0;
-    for (const Node& n : sys.shape().nodes()) largest = std::max(largest, n.radius);
-    range_ = std::max(range_, 2.0 * largest + settings_.control.gap_range);
-  }
+  if (settings_.control.adaptive && settings_.control.gap_step > 0.0)
+    range_ = std::max(range_, pair_gap_list_range(sys.shape(), settings_.control.gap_range));
   list_.configure(range_, settings_.skin);
   if (settings_.skin_auto) list_.adapt_skin(kMinAutoSkin, kMaxAutoSkin, kAutoSkinUpdates);
   sys.update_nodes();
