@@ -53,12 +53,13 @@ def main():
             label = {"auto": f"auto, tol {r['tolerance']}, frame {r['dt_or_dtmax']}",
                      "bound": f"bound {r['tolerance']} a, frame {r['dt_or_dtmax']}",
                      "pieces": f"bound {r['tolerance']} a, equal pieces",
-                     "gap": f"gap bound {r['tolerance']} a"}.get(
+                     "gap": f"gap bound {r['tolerance']} a",
+                     "both": f"both bounds, gap {r['tolerance']} a"}.get(
                          mode, f"fixed {r['dt_or_dtmax']}")
             if seed_set(r):
                 label += f" (seeds {seed_set(r)[1:]}+)"
             marker, colour = {"auto": ("v", "C1"), "bound": ("s", "C2"), "pieces": ("D", "C3"),
-                              "gap": ("*", "C4")}.get(mode, ("o", "C0"))
+                              "gap": ("*", "C4"), "both": ("P", "C5")}.get(mode, ("o", "C0"))
             passed = r["verdict"] == "pass"
             ax.scatter(cost[key(r)], -math.log10(float(r["chi2_p"])), s=60, marker=marker,
                        facecolors=colour if passed else "none", edgecolors=colour, zorder=3)
@@ -72,10 +73,11 @@ def main():
         ax.grid(True, which="both", alpha=0.3)
     axes[0].set_ylabel("-log10 chi-square p, g(r) vs oracle (16 runs)")
     fig.text(0.01, 0.01, "circles fixed steps, triangles dt: auto with a tolerance, squares dt: auto with "
-             "run.displacement (dyadic pieces), diamonds the same with equal pieces, stars run.gap_step; filled: passes "
+             "run.displacement (dyadic pieces), diamonds the same with equal pieces, stars run.gap_step,\nplus signs both "
+             "(displacement 0.028 and gap_step); filled: passes "
              "the oracle; dashed: p = 0.005",
              fontsize=7)
-    fig.tight_layout(rect=(0, 0.03, 1, 1))
+    fig.tight_layout(rect=(0, 0.05, 1, 1))
     fig.savefig(out, dpi=130)
     print(out)
 
