@@ -138,7 +138,7 @@ class StepControl {
 
   StepControlSettings settings_;
   double h_ = 0.0;         // proposal (fixed step: the frame)
-  double hd_ = 0.0;        // displacement bound on the step (infinite when there is none)
+  double hd_ = 0.0;        // step bound: the shorter of the node and gap bounds (infinite without one)
   double rate_ = 0.0;      // node step: m / h^p averaged over the last steps (0: no step yet)
   double gap_rate_ = 0.0;  // the same for the gap step
   bool done_ = true;
