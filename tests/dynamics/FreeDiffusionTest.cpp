@@ -66,5 +66,61 @@ TEST(FreeDiffusion, DicolloidDirectorDecorrelatesAtTwiceRotationalDiffusivity) {
   EXPECT_NEAR(t.mean, 6.0 * 0.5 * dt * steps, 3.0 * t.se);
 }
 
+// Leimkuhler-Matthews (TimeIntegrator.hpp): a free sphere's increment is sqrt(2 D dt) (xi_n +
+// xi_{n+1}) / 2 per axis, so E|d_n|^2 = 3 D dt (half of Euler-Maruyama's 6 D dt), consecutive
+// increments are correlated, E[d_n . d_{n+1}] = 1.5 D dt (Euler-Maruyama: 0), and the noises
+// telescope: E|x_n - x_0|^2 = 6 D dt (n - 1/2), the right diffusivity. Per body and axis
+// d_1 d_2 = s^2 (a + b)(b + c) with s^2 = D dt / 2 has mean s^2 and variance 5 s^4, so with
+// 4000 spheres the mean of d_1 . d_2 (3 s^2) has SE sqrt(15 / 4000) s^2 = 2 % of it. Euler-Maruyama,
+// run through the same function, is the broken variant: its correlation is 0, 49 SE away.
+struct Increments {
+  MeanWithError first_square, product, msd;
+};
+
+Increments free_sphere_increments(bool leimkuhler_matthews, double dt, int steps) {
+  Physics ph;
+  ph.kT = 1.0;
+  const std::size_t n = 4000;
+  const int side = 16;  // 4096 grid sites 4 a apart
+  Scene scene(make<Shape>("shape", "sphere", "{}"), n, 4.0 * side, ph);
+  auto& s = *scene.system;
+  for (std::size_t i = 0; i < n; ++i)
+    s.positions()[i] = 4.0 * Vec3(double(i % side), double((i / side) % side), double(i / (side * side))) +
+                       Vec3(2.0, 2.0, 2.0);
+  scene.finish(make<HydroModel>("hydro", "free_draining"), {}, HydroRequest{true, false, false});
+  std::unique_ptr<TimeIntegrator> integrator;
+  if (leimkuhler_matthews)
+    integrator = std::make_unique<LeimkuhlerMatthews>(11, n);
+  else
+    integrator = std::make_unique<EulerMaruyama>(11, true, DriftScheme::None, n);
+  std::vector<Vec3> d1(n), at1(n);
+  std::vector<double> first_square, product, msd;
+  for (int k = 0; k < steps; ++k) {
+    integrator->step(s, *scene.evaluator, dt, false);
+    if (k == 0)
+      for (std::size_t i = 0; i < n; ++i) d1[i] = s.displacement()[i];
+    if (k == 1)
+      for (std::size_t i = 0; i < n; ++i) {
+        first_square.push_back(d1[i].squaredNorm());
+        product.push_back(d1[i].dot(s.displacement()[i] - d1[i]));
+      }
+  }
+  for (std::size_t i = 0; i < n; ++i) msd.push_back(s.displacement()[i].squaredNorm());
+  return {mean_with_error(first_square), mean_with_error(product), mean_with_error(msd)};
+}
+
+TEST(FreeDiffusion, LeimkuhlerMatthewsIncrementsAreCorrelatedAndKeepTheDiffusivity) {
+  const double dt = 0.01;
+  const int steps = 20;
+  const Increments lm = free_sphere_increments(true, dt, steps);
+  EXPECT_NEAR(lm.first_square.mean, 3.0 * dt, 3.0 * lm.first_square.se) << "E|d_1|^2";
+  EXPECT_NEAR(lm.product.mean, 1.5 * dt, 3.0 * lm.product.se) << "E[d_1 . d_2]";
+  EXPECT_NEAR(lm.msd.mean, 6.0 * dt * (steps - 0.5), 3.0 * lm.msd.se) << "MSD after " << steps << " steps";
+  const Increments em = free_sphere_increments(false, dt, steps);
+  EXPECT_NEAR(em.product.mean, 0.0, 3.0 * em.product.se) << "Euler-Maruyama's increments are independent";
+  EXPECT_GT(std::fabs(em.product.mean - 1.5 * dt), 10.0 * em.product.se)
+      << "the correlation test cannot tell Euler-Maruyama from Leimkuhler-Matthews";
+}
+
 }  // namespace
 }  // namespace fldsim::testing

@@ -72,6 +72,7 @@ struct Case {
   const char* shape_params;
   const char* hydro;
   bool brownian;
+  bool leimkuhler_matthews = false;  // LeimkuhlerMatthews instead of the midpoint scheme
 };
 
 void PrintTo(const Case& c, std::ostream* os) {
@@ -97,11 +98,13 @@ TEST_P(StepAllocation, SteadyStepsDoNotAllocate) {
                HydroRequest{c.brownian, true, true}, 0.1);
 
   std::unique_ptr<TimeIntegrator> integrator;
-  if (c.brownian)
+  if (c.leimkuhler_matthews)
+    integrator = std::make_unique<LeimkuhlerMatthews>(5, n);
+  else if (c.brownian)
     integrator = std::make_unique<EulerMaruyama>(5, true, DriftScheme::Midpoint, n);
   else
     integrator = std::make_unique<RungeKutta3>(n);
-  StressSampler stress(n, c.brownian, c.brownian);
+  StressSampler stress(n, c.brownian, c.brownian && !c.leimkuhler_matthews);
   integrator->set_stress_stage(
       [&](StressStage stage, const System& s, VelocityEvaluator& ev) { stress.sample(stage, s, ev); });
 
@@ -166,10 +169,12 @@ INSTANTIATE_TEST_SUITE_P(Scenes, StepAllocation,
                                            Case{"sphere", "{}", "fld", false},
                                            Case{"dicolloid", "{a: 1, b: 1, c: 0.2}", "fld", true},
                                            Case{"dicolloid", "{a: 1, b: 1, c: 0.2}", "lubrication", true},
-                                           Case{"sphere", "{}", "free_draining", true}),
+                                           Case{"sphere", "{}", "free_draining", true},
+                                           Case{"sphere", "{}", "free_draining", true, true}),
                          [](const ::testing::TestParamInfo<Case>& info) {
                            std::string name = std::string(info.param.shape) + "_" + info.param.hydro +
-                                              (info.param.brownian ? "_brownian" : "_deterministic");
+                                              (info.param.brownian ? "_brownian" : "_deterministic") +
+                                              (info.param.leimkuhler_matthews ? "_leimkuhler_matthews" : "");
                            return name;
                          });
 

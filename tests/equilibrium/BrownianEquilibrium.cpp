@@ -75,7 +75,9 @@ BrownianEquilibrium run_brownian(const EquilibriumScene& scene, const BrownianOp
   sc.finish(make<HydroModel>("hydro", scene.hydro, scene.hydro_params), {repulsion},
             HydroRequest{true, false, opt.stress_every > 0});
   std::unique_ptr<TimeIntegrator> integrator_owner;
-  if (opt.rk3)
+  if (opt.leimkuhler_matthews)
+    integrator_owner = std::make_unique<LeimkuhlerMatthews>(opt.seed, s.size());
+  else if (opt.rk3)
     integrator_owner = std::make_unique<RungeKutta3>(opt.seed, s.size(), opt.rejected);
   else
     integrator_owner = std::make_unique<EulerMaruyama>(opt.seed, true, opt.drift, s.size(), opt.rejected);
@@ -107,7 +109,7 @@ BrownianEquilibrium run_brownian(const EquilibriumScene& scene, const BrownianOp
   StepGuard guard;
   guard.max_overlap = opt.max_overlap;
   StepLoop loop(s, integrator, *sc.evaluator, sc.list, observers, info, true,
-                !opt.rk3 && opt.drift == DriftScheme::Midpoint, control, guard);
+                !opt.rk3 && !opt.leimkuhler_matthews && opt.drift == DriftScheme::Midpoint, control, guard);
   std::unique_ptr<BrownianStressProbe> probe;
   if (opt.stress_every > 0 && opt.probe_brownian_stress) {
     // As Simulation makes it: the model's own copy with the probe's solve tolerance.

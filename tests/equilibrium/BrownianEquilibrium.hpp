@@ -33,9 +33,10 @@ struct BrownianOptions {
   double dt = 1e-3;  // a^2/D0
   DriftScheme drift = DriftScheme::Midpoint;
   bool rk3 = false;  // the paper's RK3 with frozen Brownian forces instead of Euler-Maruyama (fixed dt)
-  double equilibrate = 1.0;        // a^2/D0, not sampled
-  double duration = 10.0;          // a^2/D0, sampled
-  std::int64_t sample_every = 10;  // steps
+  bool leimkuhler_matthews = false;  // LeimkuhlerMatthews instead (fixed dt, constant mobility only)
+  double equilibrate = 1.0;          // a^2/D0, not sampled
+  double duration = 10.0;            // a^2/D0, sampled
+  std::int64_t sample_every = 10;    // steps
   int blocks = 20;
   std::uint64_t seed = 1;  // start and noise
   double bin_width = 0.01, r_max = 3.0;

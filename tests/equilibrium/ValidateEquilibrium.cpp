@@ -22,7 +22,8 @@
 // and gap_phi03 (the pair-gap bound 0.0048 a alone, frame 1.6e-3) and gap_long_phi03 (0.009 a: must fail),
 // both_phi05 and both_phi03 (the node bound 0.028 a and the gap bound 0.0048 a, the shorter taken).
 // Keys: n, phi, dt, duration, equilibrate, blocks, every, seed, hydro, hydro_params, force_params, drift
-// (midpoint|none), integrator (euler_maruyama|rk3: the paper's RK3 with frozen Brownian forces; fixed dt),
+// (midpoint|none), integrator (euler_maruyama|rk3: the paper's RK3 with frozen Brownian forces; fixed dt|
+// leimkuhler_matthews: mean of consecutive steps' noise, fixed dt, constant mobility),
 // oracle_sweeps, oracle_blocks, stress_every, max_overlap, adaptive (0|1), tolerance, reject_at,
 // displacement (run.displacement, a), gap_step and gap_range (run.gap_step, run.gap_range, a), error_control
 // (0|1: 0 = the bound alone), rejected
@@ -315,9 +316,10 @@ void apply(Case& c, const std::string& kv) {
   else if (k == "drift")
     c.bd.drift = v == "none" ? DriftScheme::None : DriftScheme::Midpoint;
   else if (k == "integrator") {
-    if (v != "rk3" && v != "euler_maruyama")
-      throw std::runtime_error("integrator: expected euler_maruyama or rk3");
+    if (v != "rk3" && v != "euler_maruyama" && v != "leimkuhler_matthews")
+      throw std::runtime_error("integrator: expected euler_maruyama, rk3 or leimkuhler_matthews");
     c.bd.rk3 = v == "rk3";
+    c.bd.leimkuhler_matthews = v == "leimkuhler_matthews";
   } else if (k == "oracle_sweeps")
     c.mc.sweeps = std::stol(v);
   else if (k == "oracle_blocks")
@@ -390,7 +392,8 @@ bool run_case(const std::string& name, const Case& c) {
                           "), frame "
                     : "")
             << c.bd.dt << ", "
-            << (c.bd.rk3                          ? "rk3, Brownian force frozen over its stages"
+            << (c.bd.leimkuhler_matthews          ? "Leimkuhler-Matthews (mean of consecutive noises)"
+                : c.bd.rk3                        ? "rk3, Brownian force frozen over its stages"
                 : c.bd.drift == DriftScheme::None ? "drift none"
                                                   : "midpoint drift")
             << ", " << c.bd.duration << " a^2/D0 sampled after " << c.bd.equilibrate << ", " << c.bd.blocks

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "fldsim/hydro.hpp"
 #include "fldsim/rigid.hpp"
 
 namespace fldsim {
@@ -123,6 +124,38 @@ StepAttempt EulerMaruyama::attempt(System& s, VelocityEvaluator& ev, const Noise
   at_stress_stage(midpoint ? StressStage::Final : StressStage::Start, s, ev, want_virial);
   move_from(s, base_, U_.data(), dt);
   if (midpoint) a.error = largest_error(s, U_.data(), U0_.data(), dt);
+  finish_attempt(s, ev, a);
+  return a;
+}
+
+bool constant_mobility(const HydroModel& hydro, const System& s) {
+  const auto& nodes = s.shape().nodes();
+  return hydro.pair_range(s) == 0.0 && nodes.size() == 1 && nodes[0].position.isZero(0.0);
+}
+
+LeimkuhlerMatthews::LeimkuhlerMatthews(std::uint64_t seed, std::size_t bodies)
+    : TimeIntegrator(bodies), seed_(seed) {}
+
+std::string LeimkuhlerMatthews::describe() const {
+  return "Leimkuhler-Matthews (Euler-Maruyama with the mean of consecutive steps' noise; constant mobility)";
+}
+
+StepAttempt LeimkuhlerMatthews::attempt(System& s, VelocityEvaluator& ev, const NoiseInterval& interval,
+                                        bool want_virial) {
+  const double dt = interval.duration();
+  begin_attempt(s, ev, dt);
+  StepAttempt a;
+  ev.prepare(s, want_virial);
+  if (interval.depth == 0 && interval.attempt == 0)
+    ev.draw_brownian_with_next(s, seed_, interval);
+  else
+    ev.draw_brownian(s, seed_, bridge_, interval);  // a piece of a split step: plain Euler-Maruyama
+  ev.solve(s, true);
+  std::copy_n(ev.velocity(), U_.size(), U_.begin());
+  std::copy_n(ev.relative_velocity(), dU_.size(), dU_.begin());
+  if (!all_finite(U_.data(), U_.size())) return StepAttempt{0.0, a.min_gap, false};
+  at_stress_stage(StressStage::Start, s, ev, want_virial);
+  move_from(s, base_, U_.data(), dt);
   finish_attempt(s, ev, a);
   return a;
 }

@@ -12,6 +12,7 @@ VelocityEvaluator::VelocityEvaluator(std::shared_ptr<HydroModel> hydro,
       list_(pairs),
       FP_(6 * bodies, 0.0),
       FB_(6 * bodies, 0.0),
+      FB_next_(6 * bodies, 0.0),
       F_(6 * bodies, 0.0),
       dU_(6 * bodies, 0.0),
       U_(6 * bodies, 0.0) {}
@@ -50,6 +51,16 @@ void VelocityEvaluator::draw_brownian(const System& s, std::uint64_t seed, const
     combination_.coefficient[std::size_t(j)] = terms_[std::size_t(j)].coefficient / root_h;
   }
   hydro_->brownian_force(s, list_.pairs(), stream(0).combined(combination_), h, FB_.data());
+}
+
+void VelocityEvaluator::draw_brownian_with_next(const System& s, std::uint64_t seed,
+                                                const NoiseInterval& interval) {
+  const double h = interval.duration();
+  const RandomStream now(seed, RandomPurpose::BodyNoise, interval.base, 0);
+  const RandomStream next(seed, RandomPurpose::BodyNoise, interval.base + 1, 0);
+  hydro_->brownian_force(s, list_.pairs(), now, h, FB_.data());
+  hydro_->brownian_force(s, list_.pairs(), next, h, FB_next_.data());
+  for (std::size_t k = 0; k < FB_.size(); ++k) FB_[k] = 0.5 * (FB_[k] + FB_next_[k]);
 }
 
 double VelocityEvaluator::min_gap(const System& s) {

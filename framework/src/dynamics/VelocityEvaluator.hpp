@@ -33,6 +33,10 @@ class VelocityEvaluator {
   // brownian_force(stream_0, h) itself, bit for bit.
   void draw_brownian(const System& s, std::uint64_t seed, const BrownianBridge& bridge,
                      const NoiseInterval& interval);
+  // F_B = (F_B[xi_k] + F_B[xi_{k+1}]) / 2 for the whole base interval k = interval.base (depth 0)
+  // and the next one, both with the prepared configuration's resistance (LeimkuhlerMatthews):
+  // two plain draws, the first bit for bit the fixed-step draw of step k.
+  void draw_brownian_with_next(const System& s, std::uint64_t seed, const NoiseInterval& interval);
   // Refresh the pair list at the current configuration; smallest node surface gap (a).
   double min_gap(const System& s);
   // Solve with F_P (+ the stored F_B if with_brownian). Warm-started from the previous dU.
@@ -55,7 +59,7 @@ class VelocityEvaluator {
   std::shared_ptr<HydroModel> hydro_;
   std::vector<std::shared_ptr<ForceLaw>> forces_;
   CellNeighbourList& list_;
-  std::vector<double> FP_, FB_, F_, dU_, U_;
+  std::vector<double> FP_, FB_, FB_next_, F_, dU_, U_;
   BrownianBridge::Terms terms_;
   NormalCombination combination_;  // the bridge's terms as one stream (draw_brownian)
   Eigen::Matrix3d virial_ = Eigen::Matrix3d::Zero();

@@ -209,7 +209,15 @@ Simulation::Simulation(SimulationParts parts, SimulationSettings settings, Resul
     skipped_.push_back("no Brownian stress (it needs the midpoint stage: run.drift: midpoint)");
 
   const bool use_rk3 = settings_.integrator == "rk3" || (settings_.integrator == "auto" && !brownian_);
-  if (use_rk3 && brownian_)
+  const bool use_lm = settings_.integrator == "leimkuhler_matthews";
+  if (use_lm && !constant_mobility(*parts_.hydro, sys))
+    throw ConfigError(
+        "run.integrator: leimkuhler_matthews needs a constant mobility (spheres, a hydro model "
+        "without pair terms such as free_draining); " +
+        parts_.hydro_name + " with " + std::to_string(sys.shape().nodes().size()) + "-node bodies has none");
+  if (use_lm)
+    integrator_ = std::make_unique<LeimkuhlerMatthews>(settings_.seed, sys.size());
+  else if (use_rk3 && brownian_)
     integrator_ = std::make_unique<RungeKutta3>(settings_.seed, sys.size());
   else if (use_rk3)
     integrator_ = std::make_unique<RungeKutta3>(sys.size());
@@ -262,8 +270,8 @@ Simulation::Simulation(SimulationParts parts, SimulationSettings settings, Resul
   info_.seed = settings_.seed;
   for (auto& o : parts_.observers) o->begin(sys, info_, sink_);
   steps_ = std::make_unique<StepLoop>(sys, *integrator_, *evaluator_, list_, parts_.observers, info_,
-                                      brownian_, !use_rk3 && settings_.drift == "midpoint", settings_.control,
-                                      settings_.guard, &log_);
+                                      brownian_, !use_rk3 && !use_lm && settings_.drift == "midpoint",
+                                      settings_.control, settings_.guard, &log_);
   if (parts_.probe_hydro) {
     probe_ = std::make_unique<BrownianStressProbe>(parts_.probe_hydro, sys, range_, settings_.skin,
                                                    settings_.probe_delta, settings_.seed);
