@@ -246,5 +246,49 @@ TEST(Simulation, WritesTheComponentsRunNotesToTheLog) {
   EXPECT_EQ(text.find("note:", at + 1), std::string::npos) << text;
 }
 
+// Free-draining spheres: a constant mobility. `integrator: auto` takes Leimkuhler-Matthews at fixed
+// steps (docs/time_steps.md, "A constant mobility") and keeps Euler-Maruyama where run.drift is given
+// or the mobility turns with the body; the averaged noise resumes bit for bit like any other.
+std::string free_draining_file(const std::string& name, const std::string& shape,
+                               const std::string& run_extra) {
+  const fs::path d = fs::temp_directory_path() / ("fldsim-simulation-" + std::to_string(::getpid()));
+  fs::create_directories(d);
+  const fs::path f = d / (name + ".yaml");
+  std::ofstream(f)
+      << "system:\n  shape: " << shape
+      << "\n  count: 27\n  volume_fraction: 0.3\n  init: {method: monte_carlo, seed: 3, sweeps: 50}\n"
+         "flow: {peclet: 0}\nhydro: {plugin: free_draining}\nforces:\n  - {plugin: repulsion}\n"
+         "run: {dt: 2.5e-5, duration: 5.0e-4, time_unit: diffusive, seed: 9, threads: 1"
+      << run_extra << "}\noutput: unused.h5\n";
+  return f.string();
+}
+
+TEST(Simulation, AutoTakesLeimkuhlerMatthewsWhereTheMobilityIsConstant) {
+  const std::string lm = "integrator: Leimkuhler-Matthews";
+  auto spheres = build(free_draining_file("fd-auto", "{plugin: sphere}", ""));
+  EXPECT_NE(spheres->log.str().find(lm), std::string::npos) << spheres->log.str();
+  EXPECT_NE(spheres->log.str().find("note: integrator auto took Leimkuhler-Matthews"), std::string::npos);
+  auto drift = build(free_draining_file("fd-drift", "{plugin: sphere}", ", drift: none"));
+  EXPECT_NE(drift->log.str().find("integrator: Euler-Maruyama without thermal drift"), std::string::npos)
+      << drift->log.str();
+  auto dicolloids = build(free_draining_file("fd-dicolloid", "{plugin: dicolloid, c: 0.2}", ""));
+  EXPECT_NE(dicolloids->log.str().find("integrator: Euler-Maruyama with midpoint thermal drift"),
+            std::string::npos)
+      << dicolloids->log.str();
+}
+
+TEST(Simulation, LeimkuhlerMatthewsCaptureThenApplyContinuesBitForBit) {
+  const std::string file = free_draining_file("fd-resume", "{plugin: sphere}", "");
+  auto whole = build(file);
+  for (int k = 0; k < 9; ++k) whole->sim->step();
+  const Checkpoint middle = whole->sim->capture();
+  whole->sim->run();
+  const Checkpoint end = whole->sim->capture();
+  auto resumed = build(file);
+  resumed->sim->apply(middle);
+  resumed->sim->run();
+  expect_same_state(end, resumed->sim->capture());
+}
+
 }  // namespace
 }  // namespace fldsim

@@ -129,7 +129,9 @@ ParamSchema run_schema() {
            "1/gammadot, paper = diffusive for Pe < 1 and strain for Pe >= 1 (Kumar & Higdon)");
   s.integer("seed", 42, "", "seed of the Brownian noise (counter-based: same seed, same run)").at_least(0);
   s.choice("integrator", "auto", {"auto", "euler_maruyama", "rk3", "leimkuhler_matthews"},
-           "auto = Euler-Maruyama (midpoint drift) for Brownian runs, third-order Runge-Kutta for kT = 0; "
+           "auto = Euler-Maruyama (midpoint drift) for Brownian runs (Leimkuhler-Matthews at fixed steps "
+           "where the "
+           "mobility is constant and run.drift is not given), third-order Runge-Kutta for kT = 0; "
            "rk3 with Brownian motion = the paper's scheme (Brownian force frozen over the three stages, "
            "which gives the thermal drift; fixed steps only); leimkuhler_matthews = Euler-Maruyama with "
            "the mean of this and the next step's noise, equilibrium exact to O(dt^2) where the mobility is "

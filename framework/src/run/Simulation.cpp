@@ -112,6 +112,8 @@ SimulationSettings settings_of(const Experiment& ex, const UserTimeUnit& unit, T
   s.total_steps = std::int64_t(std::llround(ex.duration / ex.dt));
   s.integrator = ex.integrator;
   s.drift = ex.drift;
+  s.auto_may_average_noise = ex.integrator == "auto" && ex.brownian && !ex.dt_auto && ex.refine == 0 &&
+                             !ex.run_params.given("drift") && ex.brownian_stress != "midpoint";
   s.probe_delta = ex.brownian_stress_delta;
   s.skin = ex.skin;
   s.skin_auto = ex.skin_auto;
@@ -209,8 +211,11 @@ Simulation::Simulation(SimulationParts parts, SimulationSettings settings, Resul
     skipped_.push_back("no Brownian stress (it needs the midpoint stage: run.drift: midpoint)");
 
   const bool use_rk3 = settings_.integrator == "rk3" || (settings_.integrator == "auto" && !brownian_);
-  const bool use_lm = settings_.integrator == "leimkuhler_matthews";
-  if (use_lm && !constant_mobility(*parts_.hydro, sys))
+  // With a constant mobility `auto` takes Leimkuhler-Matthews: no midpoint stage to pay for, and its
+  // equilibrium is exact to O(dt^2) (docs/time_steps.md, "A constant mobility").
+  const bool auto_lm = settings_.auto_may_average_noise && constant_mobility(*parts_.hydro, sys);
+  const bool use_lm = settings_.integrator == "leimkuhler_matthews" || auto_lm;
+  if (use_lm && !auto_lm && !constant_mobility(*parts_.hydro, sys))
     throw ConfigError(
         "run.integrator: leimkuhler_matthews needs a constant mobility (spheres, a hydro model "
         "without pair terms such as free_draining); " +
@@ -255,6 +260,12 @@ Simulation::Simulation(SimulationParts parts, SimulationSettings settings, Resul
        << settings_.skin << " a\n"
        << "threads: " << settings_.threads.threads << " (" << settings_.threads.reason << ")\n";
   for (const auto& w : settings_.threads.warnings) log_ << "warning: " << w << "\n";
+  if (auto_lm)
+    log_ << "note: integrator auto took Leimkuhler-Matthews: the mobility is constant (one-sphere bodies, "
+         << parts_.hydro_name
+         << "), so no midpoint stage is needed and the equilibrium is exact to O(dt^2); "
+            "run.integrator: euler_maruyama for the midpoint scheme (docs/time_steps.md, \"A constant "
+            "mobility\")\n";
   if (use_rk3 && brownian_)
     log_ << "note: rk3 with Brownian motion is the paper's scheme; near contact its third stage, at "
             "x - dt k1 + 2 dt k2, can step back to where lubrication is weaker and overlap pairs more "

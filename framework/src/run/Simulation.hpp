@@ -54,10 +54,13 @@ void check_observer_needs(const Experiment& ex, const HydroModel& hydro,
 
 // How the parts are stepped.
 struct SimulationSettings {
-  double dt = 0.0;                   // the frame, internal time units (a^2/D0); dt_max with dt: auto
-  std::int64_t total_steps = 0;      // the run ends at this step (resumed runs count from 0 too)
-  std::string integrator = "auto";   // auto (Euler-Maruyama if Brownian, else RK3) | euler_maruyama | rk3
-  std::string drift = "midpoint";    // midpoint | none
+  double dt = 0.0;                  // the frame, internal time units (a^2/D0); dt_max with dt: auto
+  std::int64_t total_steps = 0;     // the run ends at this step (resumed runs count from 0 too)
+  std::string integrator = "auto";  // auto (Euler-Maruyama if Brownian, else RK3) | euler_maruyama | rk3
+  std::string drift = "midpoint";   // midpoint | none
+  // integrator auto may take Leimkuhler-Matthews where the mobility is constant: fixed steps, no
+  // run.refine, and neither run.drift nor a midpoint Brownian stress asked for.
+  bool auto_may_average_noise = false;
   double skin = 0.3;                 // neighbour-list skin, a
   bool skin_auto = false;            // run.skin: auto: rescaled at every rebuild (CellNeighbourList)
   double probe_delta = 1e-4;         // run.brownian_stress_delta (a), with parts.probe_hydro
