@@ -37,6 +37,12 @@ void TimeIntegrator::begin_attempt(const System& s, VelocityEvaluator& ev, doubl
   dt_ = dt;
 }
 
+bool TimeIntegrator::take_velocity(const VelocityEvaluator& ev) {
+  std::copy_n(ev.velocity(), U_.size(), U_.begin());
+  std::copy_n(ev.relative_velocity(), dU_.size(), dU_.begin());
+  return all_finite(U_.data(), U_.size());
+}
+
 void TimeIntegrator::finish_attempt(System& s, VelocityEvaluator& ev, StepAttempt& a) const {
   a.finite = all_finite(U_.data(), U_.size()) && std::isfinite(a.error);
   for (const Vec3& x : s.positions()) a.finite = a.finite && x.allFinite();
@@ -118,9 +124,7 @@ StepAttempt EulerMaruyama::attempt(System& s, VelocityEvaluator& ev, const Noise
     ev.prepare(s, false);
     ev.solve(s, true);  // same F_B: the noise is frozen over the step
   }
-  std::copy_n(ev.velocity(), U_.size(), U_.begin());
-  std::copy_n(ev.relative_velocity(), dU_.size(), dU_.begin());
-  if (!all_finite(U_.data(), U_.size())) return StepAttempt{0.0, a.min_gap, false};
+  if (!take_velocity(ev)) return StepAttempt{0.0, a.min_gap, false};
   at_stress_stage(midpoint ? StressStage::Final : StressStage::Start, s, ev, want_virial);
   move_from(s, base_, U_.data(), dt);
   if (midpoint) a.error = largest_error(s, U_.data(), U0_.data(), dt);
@@ -151,9 +155,7 @@ StepAttempt LeimkuhlerMatthews::attempt(System& s, VelocityEvaluator& ev, const 
   else
     ev.draw_brownian(s, seed_, bridge_, interval);  // a piece of a split step: plain Euler-Maruyama
   ev.solve(s, true);
-  std::copy_n(ev.velocity(), U_.size(), U_.begin());
-  std::copy_n(ev.relative_velocity(), dU_.size(), dU_.begin());
-  if (!all_finite(U_.data(), U_.size())) return StepAttempt{0.0, a.min_gap, false};
+  if (!take_velocity(ev)) return StepAttempt{0.0, a.min_gap, false};
   at_stress_stage(StressStage::Start, s, ev, want_virial);
   move_from(s, base_, U_.data(), dt);
   finish_attempt(s, ev, a);

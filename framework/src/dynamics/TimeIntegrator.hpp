@@ -91,6 +91,8 @@ class TimeIntegrator {
   }
   // Save the start state (and warm start) of an attempt.
   void begin_attempt(const System& s, VelocityEvaluator& ev, double dt);
+  // The step's velocities (U_, dU_) from the evaluator's last solve; false if not finite.
+  bool take_velocity(const VelocityEvaluator& ev);
   // After the final move: finiteness, then the smallest gap (refreshing the pair list).
   void finish_attempt(System& s, VelocityEvaluator& ev, StepAttempt& a) const;
   // Largest over bodies of h |a - b| for a surface point (translation + radius x rotation);
