@@ -246,9 +246,10 @@ TEST(Simulation, WritesTheComponentsRunNotesToTheLog) {
   EXPECT_EQ(text.find("note:", at + 1), std::string::npos) << text;
 }
 
-// Free-draining spheres: a constant mobility. `integrator: auto` takes Leimkuhler-Matthews at fixed
-// steps (docs/time_steps.md, "A constant mobility") and keeps Euler-Maruyama where run.drift is given
-// or the mobility turns with the body; the averaged noise resumes bit for bit like any other.
+// Free draining: `integrator: auto` takes Leimkuhler-Matthews at fixed steps for spheres and
+// homonuclear dicolloids (docs/time_steps.md, "A constant mobility") and keeps Euler-Maruyama where
+// run.drift is given or unequal nodes couple translation and rotation; the averaged noise resumes
+// bit for bit like any other.
 std::string free_draining_file(const std::string& name, const std::string& shape,
                                const std::string& run_extra) {
   const fs::path d = fs::temp_directory_path() / ("fldsim-simulation-" + std::to_string(::getpid()));
@@ -263,7 +264,7 @@ std::string free_draining_file(const std::string& name, const std::string& shape
   return f.string();
 }
 
-TEST(Simulation, AutoTakesLeimkuhlerMatthewsWhereTheMobilityIsConstant) {
+TEST(Simulation, AutoTakesLeimkuhlerMatthewsWhereTheAveragedNoiseIsUnbiased) {
   const std::string lm = "integrator: Leimkuhler-Matthews";
   auto spheres = build(free_draining_file("fd-auto", "{plugin: sphere}", ""));
   EXPECT_NE(spheres->log.str().find(lm), std::string::npos) << spheres->log.str();
@@ -271,10 +272,13 @@ TEST(Simulation, AutoTakesLeimkuhlerMatthewsWhereTheMobilityIsConstant) {
   auto drift = build(free_draining_file("fd-drift", "{plugin: sphere}", ", drift: none"));
   EXPECT_NE(drift->log.str().find("integrator: Euler-Maruyama without thermal drift"), std::string::npos)
       << drift->log.str();
-  auto dicolloids = build(free_draining_file("fd-dicolloid", "{plugin: dicolloid, c: 0.2}", ""));
-  EXPECT_NE(dicolloids->log.str().find("integrator: Euler-Maruyama with midpoint thermal drift"),
+  auto homonuclear = build(free_draining_file("fd-dicolloid", "{plugin: dicolloid, c: 0.2}", ""));
+  EXPECT_NE(homonuclear->log.str().find(lm), std::string::npos) << homonuclear->log.str();
+  // Unequal nodes couple translation and rotation: the averaged noise would drift.
+  auto heteronuclear = build(free_draining_file("fd-hetero", "{plugin: dicolloid, a: 1, b: 0.6, c: 1}", ""));
+  EXPECT_NE(heteronuclear->log.str().find("integrator: Euler-Maruyama with midpoint thermal drift"),
             std::string::npos)
-      << dicolloids->log.str();
+      << heteronuclear->log.str();
 }
 
 TEST(Simulation, LeimkuhlerMatthewsCaptureThenApplyContinuesBitForBit) {

@@ -339,17 +339,18 @@ TEST_F(Corpus, CoreKeys) {
                                r["run"]["brownian_stress"] = "midpoint";
                              }),
                              {at_key("run.brownian_stress") + "brownian_stress: midpoint needs"}));
-  cases.push_back(check_case("leimkuhler_matthews with a configuration-dependent mobility",
-                             edited([](YAML::Node& r) {
-                               r["hydro"]["plugin"] = "fld";
-                               r["run"]["integrator"] = "leimkuhler_matthews";
-                             }),
-                             {at_key("run.integrator") + "leimkuhler_matthews needs a constant mobility"}));
-  cases.push_back(check_case("leimkuhler_matthews with free-draining dicolloids", edited([](YAML::Node& r) {
-                               r["system"]["shape"] = YAML::Load("{plugin: dicolloid, a: 1, b: 1, c: 0.2}");
-                               r["run"]["integrator"] = "leimkuhler_matthews";
-                             }),
-                             {at_key("run.integrator") + "leimkuhler_matthews needs a constant mobility"}));
+  cases.push_back(
+      check_case("leimkuhler_matthews with a configuration-dependent mobility", edited([](YAML::Node& r) {
+                   r["hydro"]["plugin"] = "fld";
+                   r["run"]["integrator"] = "leimkuhler_matthews";
+                 }),
+                 {at_key("run.integrator") + "leimkuhler_matthews needs a hydro model without pair terms"}));
+  cases.push_back(
+      check_case("leimkuhler_matthews with free-draining heteronuclear dicolloids", edited([](YAML::Node& r) {
+                   r["system"]["shape"] = YAML::Load("{plugin: dicolloid, a: 1, b: 0.6, c: 1}");
+                   r["run"]["integrator"] = "leimkuhler_matthews";
+                 }),
+                 {at_key("run.integrator") + "leimkuhler_matthews needs a hydro model without pair terms"}));
   cases.push_back(check_case("leimkuhler_matthews at dt: auto", edited([](YAML::Node& r) {
                                r["run"]["integrator"] = "leimkuhler_matthews";
                                r["run"]["dt"] = "auto";

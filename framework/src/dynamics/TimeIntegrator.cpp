@@ -132,16 +132,24 @@ StepAttempt EulerMaruyama::attempt(System& s, VelocityEvaluator& ev, const Noise
   return a;
 }
 
-bool constant_mobility(const HydroModel& hydro, const System& s) {
-  const auto& nodes = s.shape().nodes();
-  return hydro.pair_range(s) == 0.0 && nodes.size() == 1 && nodes[0].position.isZero(0.0);
+bool averaged_noise_unbiased(const HydroModel& hydro, const System& s) {
+  if (hydro.pair_range(s) != 0.0) return false;
+  // A body's coupling R_tr = sum_n 6 pi mu a_n [p_n]x (isolated-node drags) vanishes when the
+  // radius-weighted node centre is the body centre.
+  Vec3 moment = Vec3::Zero();
+  double scale = 0.0;
+  for (const Node& n : s.shape().nodes()) {
+    moment += n.radius * n.position;
+    scale += n.radius * (n.radius + n.position.norm());
+  }
+  return moment.norm() <= 1e-12 * scale;
 }
 
 LeimkuhlerMatthews::LeimkuhlerMatthews(std::uint64_t seed, std::size_t bodies)
     : TimeIntegrator(bodies), seed_(seed) {}
 
 std::string LeimkuhlerMatthews::describe() const {
-  return "Leimkuhler-Matthews (Euler-Maruyama with the mean of consecutive steps' noise; constant mobility)";
+  return "Leimkuhler-Matthews (Euler-Maruyama with the mean of consecutive steps' noise)";
 }
 
 StepAttempt LeimkuhlerMatthews::attempt(System& s, VelocityEvaluator& ev, const NoiseInterval& interval,

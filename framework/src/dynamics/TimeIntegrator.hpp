@@ -134,12 +134,17 @@ class EulerMaruyama : public TimeIntegrator {
 // the Brownian-dynamics limit of the BAOAB Langevin scheme. For a constant mobility (additive
 // noise) its equilibrium distribution is exact to O(dt^2) where Euler-Maruyama's is O(dt)
 // (Leimkuhler & Matthews, Appl. Math. Res. Express 2013, 34; arXiv:1102.4139), at one solve
-// per step and no midpoint stage, which a constant mobility does not need (div M = 0). With a
-// configuration-dependent mobility the noise's memory would add a spurious drift
-// (kT/2) sum_k (d_k B) B_k, so the run configuration allows it only where M is constant:
-// spheres with a model without pair terms (free_draining). Fixed steps only; xi_{n+1} is the
-// next step's own key, so a resumed run draws the same numbers. A step the guard splits takes
-// its pieces as plain Euler-Maruyama on the bridge (no memory across the split).
+// per step and no midpoint stage. Where the noise's factor B (B B^T = M) depends on the
+// configuration, xi_{n+1}'s share of step n moves x_{n+1}, where B is evaluated for step n+1:
+// a drift (kT/2) sum_k (d_k B) B_k e_k that does not vanish with dt. It does vanish for a
+// pair-free model of rigid bodies without translation-rotation coupling: then B is block-diagonal
+// and depends only on the orientation, B = Q B_body, so only rotations k contribute, each
+// ([e_k]x M_rr)_{i k}, and sum_k eps_{i k m} (M_rr)_{m k} = 0 for the symmetric M_rr (the thermal
+// drift kT div M vanishes likewise). So the run configuration allows it where
+// averaged_noise_unbiased() holds: spheres, homonuclear dicolloids, fused dumbbells with
+// free_draining. Fixed steps only; xi_{n+1} is the next step's own key, so a resumed run draws the
+// same numbers. A step the guard splits takes its pieces as plain Euler-Maruyama on the bridge
+// (no memory across the split).
 class LeimkuhlerMatthews : public TimeIntegrator {
  public:
   LeimkuhlerMatthews(std::uint64_t seed, std::size_t bodies);
@@ -153,10 +158,10 @@ class LeimkuhlerMatthews : public TimeIntegrator {
   BrownianBridge bridge_;
 };
 
-// True where the mobility does not depend on the configuration: bodies that are one sphere at
-// their centre, and a hydro model without pair terms (pair_range 0). Where LeimkuhlerMatthews
-// is allowed.
-bool constant_mobility(const HydroModel& hydro, const System& s);
+// True where LeimkuhlerMatthews is allowed: a hydro model without pair terms (pair_range 0) and
+// bodies whose radius-weighted node centre is the body centre, so that their isolated-node drags
+// do not couple translation and rotation (see above).
+bool averaged_noise_unbiased(const HydroModel& hydro, const System& s);
 
 class RungeKutta3 : public TimeIntegrator {
  public:

@@ -128,14 +128,16 @@ ParamSchema run_schema() {
            "unit of dt, duration, observer start and checkpoint_every: diffusive = a^2/D0, strain = "
            "1/gammadot, paper = diffusive for Pe < 1 and strain for Pe >= 1 (Kumar & Higdon)");
   s.integer("seed", 42, "", "seed of the Brownian noise (counter-based: same seed, same run)").at_least(0);
-  s.choice("integrator", "auto", {"auto", "euler_maruyama", "rk3", "leimkuhler_matthews"},
-           "auto = Euler-Maruyama (midpoint drift) for Brownian runs (Leimkuhler-Matthews at fixed steps "
-           "where the "
-           "mobility is constant and run.drift is not given), third-order Runge-Kutta for kT = 0; "
-           "rk3 with Brownian motion = the paper's scheme (Brownian force frozen over the three stages, "
-           "which gives the thermal drift; fixed steps only); leimkuhler_matthews = Euler-Maruyama with "
-           "the mean of this and the next step's noise, equilibrium exact to O(dt^2) where the mobility is "
-           "constant (spheres, free_draining; fixed steps, Brownian runs; docs/time_steps.md)");
+  s.choice(
+      "integrator", "auto", {"auto", "euler_maruyama", "rk3", "leimkuhler_matthews"},
+      "auto = Euler-Maruyama (midpoint drift) for Brownian runs (Leimkuhler-Matthews at fixed steps "
+      "with free_draining and bodies without translation-rotation coupling, run.drift not given), "
+      "third-order Runge-Kutta for kT = 0; "
+      "rk3 with Brownian motion = the paper's scheme (Brownian force frozen over the three stages, "
+      "which gives the thermal drift; fixed steps only); leimkuhler_matthews = Euler-Maruyama with "
+      "the mean of this and the next step's noise, equilibrium exact to O(dt^2) where the mobility is "
+      "constant (spheres with free_draining; also homonuclear dicolloids there; fixed steps, Brownian runs; "
+      "docs/time_steps.md)");
   s.choice(
       "drift", "midpoint", {"midpoint", "none"},
       "thermal drift kT div M: midpoint step with frozen noise, or none (wrong equilibrium; for comparison)");
@@ -550,7 +552,7 @@ Experiment parse_experiment(YAML::Node root, const std::string& file,
   }
   if (ex.integrator == "leimkuhler_matthews") {
     // Its noise has memory from one fixed step to the next; the hydro model and shape are
-    // checked against it once built (RunCheck: a constant mobility).
+    // checked against it once built (RunCheck: averaged_noise_unbiased).
     if (!ex.brownian)
       errors.add(run["integrator"], "run.integrator",
                  "leimkuhler_matthews is a Brownian scheme; without Brownian motion use auto or rk3");
@@ -560,8 +562,8 @@ Experiment parse_experiment(YAML::Node root, const std::string& file,
                  "give run.dt a number");
     if (ex.refine > 0)
       errors.add(run["refine"], "run.refine",
-                 "run.refine splits steps on the Brownian path; not with "
-                 "leimkuhler_matthews, whose steps are whole");
+                 "run.refine splits steps on the Brownian path; not with leimkuhler_matthews, whose steps "
+                 "are whole");
     if (rp.given("drift") && ex.drift == "midpoint")
       errors.add(run["drift"], "run.drift",
                  "leimkuhler_matthews has no midpoint stage (its mobility is constant: no thermal drift)");

@@ -211,15 +211,16 @@ Simulation::Simulation(SimulationParts parts, SimulationSettings settings, Resul
     skipped_.push_back("no Brownian stress (it needs the midpoint stage: run.drift: midpoint)");
 
   const bool use_rk3 = settings_.integrator == "rk3" || (settings_.integrator == "auto" && !brownian_);
-  // With a constant mobility `auto` takes Leimkuhler-Matthews: no midpoint stage to pay for, and its
-  // equilibrium is exact to O(dt^2) (docs/time_steps.md, "A constant mobility").
-  const bool auto_lm = settings_.auto_may_average_noise && constant_mobility(*parts_.hydro, sys);
+  // Where the averaged noise is unbiased `auto` takes Leimkuhler-Matthews: no thermal drift, so no
+  // midpoint stage to pay for, and for spheres an equilibrium exact to O(dt^2) (docs/time_steps.md,
+  // "A constant mobility").
+  const bool auto_lm = settings_.auto_may_average_noise && averaged_noise_unbiased(*parts_.hydro, sys);
   const bool use_lm = settings_.integrator == "leimkuhler_matthews" || auto_lm;
-  if (use_lm && !auto_lm && !constant_mobility(*parts_.hydro, sys))
+  if (use_lm && !auto_lm && !averaged_noise_unbiased(*parts_.hydro, sys))
     throw ConfigError(
-        "run.integrator: leimkuhler_matthews needs a constant mobility (spheres, a hydro model "
-        "without pair terms such as free_draining); " +
-        parts_.hydro_name + " with " + std::to_string(sys.shape().nodes().size()) + "-node bodies has none");
+        "run.integrator: leimkuhler_matthews needs a hydro model without pair terms and bodies without "
+        "translation-rotation coupling (free_draining with spheres or homonuclear dicolloids); " +
+        parts_.hydro_name + " with " + std::to_string(sys.shape().nodes().size()) + "-node bodies is not");
   if (use_lm)
     integrator_ = std::make_unique<LeimkuhlerMatthews>(settings_.seed, sys.size());
   else if (use_rk3 && brownian_)
@@ -261,9 +262,10 @@ Simulation::Simulation(SimulationParts parts, SimulationSettings settings, Resul
        << "threads: " << settings_.threads.threads << " (" << settings_.threads.reason << ")\n";
   for (const auto& w : settings_.threads.warnings) log_ << "warning: " << w << "\n";
   if (auto_lm)
-    log_ << "note: integrator auto took Leimkuhler-Matthews: the mobility is constant (one-sphere bodies, "
+    log_ << "note: integrator auto took Leimkuhler-Matthews: a pair-free mobility without "
+            "translation-rotation coupling ("
          << parts_.hydro_name
-         << "), so no midpoint stage is needed and the equilibrium is exact to O(dt^2); "
+         << "), so no thermal drift and no midpoint stage; "
             "run.integrator: euler_maruyama for the midpoint scheme (docs/time_steps.md, \"A constant "
             "mobility\")\n";
   if (use_rk3 && brownian_)
