@@ -11,29 +11,39 @@
 namespace fldsim::testing {
 namespace {
 
-// Runs `steps` Euler-Maruyama steps of N free bodies; returns squared displacements and
-// director overlaps n(t).n(0).
-void run_free(const std::string& shape_name, const std::string& shape_yaml, std::size_t n, double dt,
-              int steps, std::vector<double>& sq, std::vector<double>& overlap,
-              bool leimkuhler_matthews = false) {
+// N free bodies 4 a apart on a grid (free-draining hydrodynamics ignores pairs anyway), kT = 1.
+std::unique_ptr<Scene> free_bodies(const std::string& shape_name, const std::string& shape_yaml,
+                                   std::size_t n) {
   Physics ph;
   ph.kT = 1.0;
-  // Bodies 4 a apart on a grid: free-draining hydrodynamics ignores pairs anyway.
   const int side = int(std::ceil(std::cbrt(double(n))));
-  Scene scene(make<Shape>("shape", shape_name, shape_yaml), n, 4.0 * side, ph);
-  auto& s = *scene.system;
+  auto scene = std::make_unique<Scene>(make<Shape>("shape", shape_name, shape_yaml), n, 4.0 * side, ph);
+  auto& s = *scene->system;
   for (std::size_t i = 0; i < n; ++i)
     s.positions()[i] = 4.0 * Vec3(double(i % side), double((i / side) % side), double(i / (side * side))) +
                        Vec3(2.0, 2.0, 2.0);
-  scene.finish(make<HydroModel>("hydro", "free_draining"), {}, HydroRequest{true, false, false});
+  scene->finish(make<HydroModel>("hydro", "free_draining"), {}, HydroRequest{true, false, false});
+  return scene;
+}
+
+// Leimkuhler-Matthews, or Euler-Maruyama with `drift`.
+std::unique_ptr<TimeIntegrator> free_integrator(bool leimkuhler_matthews, std::uint64_t seed,
+                                                DriftScheme drift, std::size_t n) {
+  if (leimkuhler_matthews) return std::make_unique<LeimkuhlerMatthews>(seed, n);
+  return std::make_unique<EulerMaruyama>(seed, true, drift, n);
+}
+
+// Runs `steps` steps of N free bodies (Euler-Maruyama with the midpoint drift unless
+// leimkuhler_matthews); returns squared displacements and director overlaps n(t).n(0).
+void run_free(const std::string& shape_name, const std::string& shape_yaml, std::size_t n, double dt,
+              int steps, std::vector<double>& sq, std::vector<double>& overlap,
+              bool leimkuhler_matthews = false) {
+  auto scene = free_bodies(shape_name, shape_yaml, n);
+  auto& s = *scene->system;
   std::vector<Vec3> n0(n);
   for (std::size_t i = 0; i < n; ++i) n0[i] = s.director(i);
-  std::unique_ptr<TimeIntegrator> integrator;
-  if (leimkuhler_matthews)
-    integrator = std::make_unique<LeimkuhlerMatthews>(7, n);
-  else
-    integrator = std::make_unique<EulerMaruyama>(7, true, DriftScheme::Midpoint, n);
-  for (int k = 0; k < steps; ++k) integrator->step(s, *scene.evaluator, dt, false);
+  auto integrator = free_integrator(leimkuhler_matthews, 7, DriftScheme::Midpoint, n);
+  for (int k = 0; k < steps; ++k) integrator->step(s, *scene->evaluator, dt, false);
   sq.clear();
   overlap.clear();
   for (std::size_t i = 0; i < n; ++i) {
@@ -103,25 +113,14 @@ struct Increments {
 };
 
 Increments free_sphere_increments(bool leimkuhler_matthews, double dt, int steps) {
-  Physics ph;
-  ph.kT = 1.0;
   const std::size_t n = 4000;
-  const int side = 16;  // 4096 grid sites 4 a apart
-  Scene scene(make<Shape>("shape", "sphere", "{}"), n, 4.0 * side, ph);
-  auto& s = *scene.system;
-  for (std::size_t i = 0; i < n; ++i)
-    s.positions()[i] = 4.0 * Vec3(double(i % side), double((i / side) % side), double(i / (side * side))) +
-                       Vec3(2.0, 2.0, 2.0);
-  scene.finish(make<HydroModel>("hydro", "free_draining"), {}, HydroRequest{true, false, false});
-  std::unique_ptr<TimeIntegrator> integrator;
-  if (leimkuhler_matthews)
-    integrator = std::make_unique<LeimkuhlerMatthews>(11, n);
-  else
-    integrator = std::make_unique<EulerMaruyama>(11, true, DriftScheme::None, n);
-  std::vector<Vec3> d1(n), at1(n);
+  auto scene = free_bodies("sphere", "{}", n);
+  auto& s = *scene->system;
+  auto integrator = free_integrator(leimkuhler_matthews, 11, DriftScheme::None, n);
+  std::vector<Vec3> d1(n);
   std::vector<double> first_square, product, msd;
   for (int k = 0; k < steps; ++k) {
-    integrator->step(s, *scene.evaluator, dt, false);
+    integrator->step(s, *scene->evaluator, dt, false);
     if (k == 0)
       for (std::size_t i = 0; i < n; ++i) d1[i] = s.displacement()[i];
     if (k == 1)

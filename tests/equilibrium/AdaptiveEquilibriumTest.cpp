@@ -88,14 +88,6 @@ GrComparisonOptions comparison_range() {
   return o;
 }
 
-EquilibriumScene free_draining_spheres() {
-  EquilibriumScene s;
-  s.hydro = "free_draining";
-  s.count = 125;
-  s.phi = 0.3;
-  return s;
-}
-
 // Free draining reaches the repulsion's overlaps: the full potential, no hard core.
 oracle::OracleResult oracle_of(const EquilibriumScene& scene) {
   return run_scene_oracle(scene, comparison_oracle_options(false));

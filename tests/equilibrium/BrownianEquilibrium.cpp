@@ -38,6 +38,14 @@ double box_edge(const Shape& shape, std::size_t n, double phi) {
 
 }  // namespace
 
+EquilibriumScene free_draining_spheres() {
+  EquilibriumScene s;
+  s.hydro = "free_draining";
+  s.count = 125;
+  s.phi = 0.3;
+  return s;
+}
+
 oracle::OracleOptions comparison_oracle_options(bool hard_core) {
   oracle::OracleOptions o;
   o.bin_width = 0.01;

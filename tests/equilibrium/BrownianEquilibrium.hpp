@@ -29,11 +29,15 @@ struct EquilibriumScene {
   std::string describe() const;
 };
 
+// Free-draining spheres, N = 125, phi = 0.3 with the default repulsion: the stiff case of the
+// step-size tests (AdaptiveEquilibriumTest, LeimkuhlerMatthewsEquilibriumTest).
+EquilibriumScene free_draining_spheres();
+
 struct BrownianOptions {
   double dt = 1e-3;  // a^2/D0
   DriftScheme drift = DriftScheme::Midpoint;
   bool rk3 = false;  // the paper's RK3 with frozen Brownian forces instead of Euler-Maruyama (fixed dt)
-  bool leimkuhler_matthews = false;  // LeimkuhlerMatthews instead (fixed dt, constant mobility only)
+  bool leimkuhler_matthews = false;  // LeimkuhlerMatthews instead (fixed dt; free draining)
   double equilibrate = 1.0;          // a^2/D0, not sampled
   double duration = 10.0;            // a^2/D0, sampled
   std::int64_t sample_every = 10;    // steps

@@ -19,10 +19,10 @@
 //   euler_maruyama (midpoint) 1e-4: 1.364 (z 23); 5e-5: 1.224; 2.5e-5: 1.114 (z 8.5); 1.25e-5: 1.072
 //                       (z 5.8; g passes, the overlap bin 1.98-2.00 a 0.78 against 0.71, z 5.9).
 // (At N = 1000, whose 16 runs resolve 2.8x finer, 2.5e-5's contact bin reads 2.6 % low and fails; 1.25e-5
-// passes there: docs/time_steps.md.) So the test runs at 2.5e-5, and its broken variant is Euler-Maruyama at the same step, which
-// must fail the same comparison (Z 11 % high). Power: the combined SE of Z is about 1.2 %, so a
-// bias above about 3.6 % fails. About 25 CPU s for the scheme, 30 for the broken variant, 7 for
-// the oracle.
+// passes there: docs/time_steps.md.) So the test runs at 2.5e-5, and its broken variant is
+// Euler-Maruyama at the same step, which must fail the same comparison (Z 11 % high). Power: the
+// combined SE of Z is about 1.2 %, so a bias above about 3.6 % fails. About 25 CPU s for the
+// scheme, 30 for the broken variant, 7 for the oracle.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -37,14 +37,6 @@ namespace {
 constexpr int kRuns = 32;
 constexpr std::uint64_t kFirstSeed = 201;
 constexpr double kDt = 2.5e-5;
-
-EquilibriumScene free_draining_spheres() {
-  EquilibriumScene s;
-  s.hydro = "free_draining";
-  s.count = 125;
-  s.phi = 0.3;
-  return s;
-}
 
 const oracle::OracleResult& sphere_oracle() {
   static const oracle::OracleResult r =

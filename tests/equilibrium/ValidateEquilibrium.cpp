@@ -23,7 +23,7 @@
 // both_phi05 and both_phi03 (the node bound 0.028 a and the gap bound 0.0048 a, the shorter taken).
 // Keys: n, phi, dt, duration, equilibrate, blocks, every, seed, hydro, hydro_params, force_params, drift
 // (midpoint|none), integrator (euler_maruyama|rk3: the paper's RK3 with frozen Brownian forces; fixed dt|
-// leimkuhler_matthews: mean of consecutive steps' noise, fixed dt, constant mobility),
+// leimkuhler_matthews: mean of consecutive steps' noise, fixed dt, free draining),
 // oracle_sweeps, oracle_blocks, stress_every, max_overlap, adaptive (0|1), tolerance, reject_at,
 // displacement (run.displacement, a), gap_step and gap_range (run.gap_step, run.gap_range, a), error_control
 // (0|1: 0 = the bound alone), rejected

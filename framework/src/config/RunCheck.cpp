@@ -412,13 +412,10 @@ RunCheckReport check_run(const Experiment& ex, const PluginRegistry& registry, c
         if (forces[i]) range = std::max(range, forces[i]->range(*sys));
       if (ex.dt_auto && ex.gap_step > 0.0)  // the list holds the pairs run.gap_step measures
         range = std::max(range, pair_gap_list_range(sys->shape(), ex.gap_range));
-      if (hydro && ex.integrator == "leimkuhler_matthews" && !averaged_noise_unbiased(*hydro, *sys))
-        problems.at(
-            ex.run_params, "integrator",
-            "leimkuhler_matthews needs a hydro model without pair terms (such as free_draining) and "
-            "bodies without translation-rotation coupling (spheres, homonuclear dicolloids); hydro '" +
-                ex.hydro.name + "' with " + ex.shape.name +
-                " bodies is not: use euler_maruyama (the default)");
+      if (hydro && ex.integrator == "leimkuhler_matthews") {
+        const std::string refusal = leimkuhler_matthews_refusal(*hydro, *sys);
+        if (!refusal.empty()) problems.at(ex.run_params, "integrator", refusal);
+      }
     } catch (const std::exception& e) {
       problems.at_block(ex.hydro, e.what());
     }

@@ -145,6 +145,14 @@ bool averaged_noise_unbiased(const HydroModel& hydro, const System& s) {
   return moment.norm() <= 1e-12 * scale;
 }
 
+std::string leimkuhler_matthews_refusal(const HydroModel& hydro, const System& s) {
+  if (averaged_noise_unbiased(hydro, s)) return "";
+  return "leimkuhler_matthews needs a hydro model without pair terms (such as free_draining) and bodies "
+         "without translation-rotation coupling (spheres, homonuclear dicolloids); hydro '" +
+         hydro.plugin_name() + "' with " + s.shape().plugin_name() +
+         " bodies is not: use euler_maruyama (the default)";
+}
+
 LeimkuhlerMatthews::LeimkuhlerMatthews(std::uint64_t seed, std::size_t bodies)
     : TimeIntegrator(bodies), seed_(seed) {}
 

@@ -162,6 +162,9 @@ class LeimkuhlerMatthews : public TimeIntegrator {
 // bodies whose radius-weighted node centre is the body centre, so that their isolated-node drags
 // do not couple translation and rotation (see above).
 bool averaged_noise_unbiased(const HydroModel& hydro, const System& s);
+// Empty where it holds; otherwise why run.integrator: leimkuhler_matthews is refused (one line, for
+// the run check and the Simulation alike).
+std::string leimkuhler_matthews_refusal(const HydroModel& hydro, const System& s);
 
 class RungeKutta3 : public TimeIntegrator {
  public:

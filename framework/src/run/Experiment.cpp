@@ -136,8 +136,8 @@ ParamSchema run_schema() {
       "rk3 with Brownian motion = the paper's scheme (Brownian force frozen over the three stages, "
       "which gives the thermal drift; fixed steps only); leimkuhler_matthews = Euler-Maruyama with "
       "the mean of this and the next step's noise, equilibrium exact to O(dt^2) where the mobility is "
-      "constant (spheres with free_draining; also homonuclear dicolloids there; fixed steps, Brownian runs; "
-      "docs/time_steps.md)");
+      "constant (free_draining with spheres; also with homonuclear dicolloids and fused dumbbells; fixed "
+      "steps, Brownian runs; docs/time_steps.md)");
   s.choice(
       "drift", "midpoint", {"midpoint", "none"},
       "thermal drift kT div M: midpoint step with frozen noise, or none (wrong equilibrium; for comparison)");
@@ -566,7 +566,7 @@ Experiment parse_experiment(YAML::Node root, const std::string& file,
                  "are whole");
     if (rp.given("drift") && ex.drift == "midpoint")
       errors.add(run["drift"], "run.drift",
-                 "leimkuhler_matthews has no midpoint stage (its mobility is constant: no thermal drift)");
+                 "leimkuhler_matthews has no midpoint stage (where it is allowed there is no thermal drift)");
     if (ex.brownian_stress == "midpoint")
       errors.add(run["brownian_stress"], "run.brownian_stress",
                  "brownian_stress: midpoint needs Euler-Maruyama's midpoint stage; use random_difference");

@@ -214,13 +214,10 @@ Simulation::Simulation(SimulationParts parts, SimulationSettings settings, Resul
   // Where the averaged noise is unbiased `auto` takes Leimkuhler-Matthews: no thermal drift, so no
   // midpoint stage to pay for, and for spheres an equilibrium exact to O(dt^2) (docs/time_steps.md,
   // "A constant mobility").
-  const bool auto_lm = settings_.auto_may_average_noise && averaged_noise_unbiased(*parts_.hydro, sys);
+  const std::string lm_refusal = leimkuhler_matthews_refusal(*parts_.hydro, sys);
+  const bool auto_lm = settings_.auto_may_average_noise && lm_refusal.empty();
   const bool use_lm = settings_.integrator == "leimkuhler_matthews" || auto_lm;
-  if (use_lm && !auto_lm && !averaged_noise_unbiased(*parts_.hydro, sys))
-    throw ConfigError(
-        "run.integrator: leimkuhler_matthews needs a hydro model without pair terms and bodies without "
-        "translation-rotation coupling (free_draining with spheres or homonuclear dicolloids); " +
-        parts_.hydro_name + " with " + std::to_string(sys.shape().nodes().size()) + "-node bodies is not");
+  if (use_lm && !lm_refusal.empty()) throw ConfigError("run.integrator: " + lm_refusal);
   if (use_lm)
     integrator_ = std::make_unique<LeimkuhlerMatthews>(settings_.seed, sys.size());
   else if (use_rk3 && brownian_)

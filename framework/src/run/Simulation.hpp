@@ -56,10 +56,10 @@ void check_observer_needs(const Experiment& ex, const HydroModel& hydro,
 struct SimulationSettings {
   double dt = 0.0;                  // the frame, internal time units (a^2/D0); dt_max with dt: auto
   std::int64_t total_steps = 0;     // the run ends at this step (resumed runs count from 0 too)
-  std::string integrator = "auto";  // auto (Euler-Maruyama if Brownian, else RK3) | euler_maruyama | rk3
+  std::string integrator = "auto";  // auto | euler_maruyama | rk3 | leimkuhler_matthews
   std::string drift = "midpoint";   // midpoint | none
-  // integrator auto may take Leimkuhler-Matthews where the mobility is constant: fixed steps, no
-  // run.refine, and neither run.drift nor a midpoint Brownian stress asked for.
+  // integrator auto may take Leimkuhler-Matthews (where the hydro model and shape allow it): fixed
+  // steps, no run.refine, and neither run.drift nor a midpoint Brownian stress asked for.
   bool auto_may_average_noise = false;
   double skin = 0.3;                 // neighbour-list skin, a
   bool skin_auto = false;            // run.skin: auto: rescaled at every rebuild (CellNeighbourList)
